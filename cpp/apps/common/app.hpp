@@ -1,0 +1,54 @@
+#pragma once
+// The command-line contract shared by every executable:
+//   TOOL [MODE] --config FILE --out FILE [--flag ...]   run
+//   TOOL --help | --version
+// Exit codes: 0 success, 2 bad input (one line naming file, JSON pointer, expectation),
+// 3 numerical failure (no artifact written), 1 internal error.
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "softsim/io/artifact.hpp"
+#include "softsim/io/json_reader.hpp"
+
+namespace softsim::app {
+
+struct AppInfo {
+  std::string name;
+  std::string summary;              // one line for --help
+  std::string config_help;          // what the config holds (for --help)
+  std::vector<std::string> modes;   // optional positional modes (first one is the default)
+  std::set<std::string> flags;      // extra boolean flags accepted, e.g. "--bench", "--force"
+  bool needs_config = true;
+  bool needs_out = true;
+};
+
+class AppContext {
+ public:
+  std::string mode;
+  std::string config_path;
+  std::string out_path;
+  std::set<std::string> flags;
+  nlohmann::json config_json;
+  io::Provenance provenance;
+
+  // The strict reader over the config root. A tool reads every key it understands and then
+  // calls config().reject_unknown() before computing anything.
+  const io::JsonReader& config() const { return *config_; }
+  bool flag(const std::string& f) const { return flags.count(f) > 0; }
+  // Records an input file's sha256 in the provenance and returns the path.
+  std::string input(const std::string& path);
+  // Writes the artifact at --out with this run's provenance.
+  void write(const std::string& schema, int version, nlohmann::json payload);
+
+  std::unique_ptr<io::JsonReader> config_;
+};
+
+int run_app(int argc, char** argv, const AppInfo& info,
+            const std::function<void(AppContext&)>& body);
+
+}  // namespace softsim::app

@@ -1,0 +1,89 @@
+#pragma once
+// Strict reading of JSON configs and artifacts.
+//
+// Every value is read through a JsonReader that knows the file it came from and its JSON
+// pointer, so any complaint is one line: "<file>: <pointer>: expected <what>, got <what>".
+// An object reader remembers which keys were read; reject_unknown() then refuses the rest,
+// so a typo in a config is an error rather than a silently ignored setting.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "softsim/io/errors.hpp"
+
+namespace softsim::io {
+
+class JsonReader {
+ public:
+  JsonReader(const nlohmann::json& value, std::string file, std::string pointer = "");
+
+  // Parses a whole file; a missing file or a syntax error is an InputError naming the file.
+  static nlohmann::json parse_file(const std::string& path);
+
+  const nlohmann::json& raw() const { return *value_; }
+  const std::string& file() const { return file_; }
+  std::string pointer() const { return pointer_.empty() ? "/" : pointer_; }
+
+  // ---- object access (each read marks the key as known) ----
+  bool has(const std::string& key) const;
+  JsonReader at(const std::string& key) const;  // required member
+  std::optional<JsonReader> optional(const std::string& key) const;
+  // Marks keys as known without reading them (a caller that forwards them elsewhere).
+  void accept(const std::string& key) const;
+  // Refuses every member that was not read: "unknown field".
+  void reject_unknown() const;
+  std::vector<std::string> keys() const;
+
+  // ---- array access ----
+  std::size_t size() const;  // requires an array
+  JsonReader operator[](std::size_t i) const;
+
+  // ---- scalars at this node ----
+  double as_double() const;  // finite number
+  std::int64_t as_int() const;
+  bool as_bool() const;
+  std::string as_string() const;
+
+  // ---- typed member shortcuts ----
+  double get_double(const std::string& key) const { return at(key).as_double(); }
+  double get_double(const std::string& key, double fallback) const;
+  double get_positive(const std::string& key) const;
+  double get_positive(const std::string& key, double fallback) const;
+  std::int64_t get_int(const std::string& key) const { return at(key).as_int(); }
+  std::int64_t get_int(const std::string& key, std::int64_t fallback) const;
+  bool get_bool(const std::string& key, bool fallback) const;
+  std::string get_string(const std::string& key) const { return at(key).as_string(); }
+  std::string get_string(const std::string& key, const std::string& fallback) const;
+  // One of a fixed set of strings.
+  std::string get_choice(const std::string& key, const std::vector<std::string>& choices) const;
+  std::string get_choice(const std::string& key, const std::vector<std::string>& choices,
+                         const std::string& fallback) const;
+  std::vector<double> get_doubles(const std::string& key) const;
+  std::vector<double> get_doubles(const std::string& key, std::size_t expected_size) const;
+  std::vector<std::int64_t> get_ints(const std::string& key) const;
+
+  // Range check of a value already read from member `key`.
+  void require(bool ok, const std::string& key, const std::string& expected) const;
+
+  [[noreturn]] void fail(const std::string& expected) const;
+  [[noreturn]] void fail_member(const std::string& key, const std::string& expected) const;
+
+ private:
+  std::string child_pointer(const std::string& key) const;
+  std::string describe() const;
+
+  const nlohmann::json* value_;
+  std::string file_;
+  std::string pointer_;
+  std::shared_ptr<std::set<std::string>> read_keys_;
+};
+
+// A short description of a JSON value's type for error messages ("string \"abc\"", "null", ...).
+std::string describe_json(const nlohmann::json& value);
+
+}  // namespace softsim::io

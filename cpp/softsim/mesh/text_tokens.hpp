@@ -1,0 +1,31 @@
+#pragma once
+// Whitespace-separated tokens with line numbers, for the ASCII mesh readers: every complaint
+// names the file, the line and what was expected.
+#include <cstdint>
+#include <string>
+
+namespace softsim::mesh {
+
+class TextTokens {
+ public:
+  TextTokens(std::string text, std::string source);
+  bool at_end();
+  std::string next(const std::string& expected);  // InputError at end of file
+  std::string peek();
+  double next_double(const std::string& expected);
+  std::int64_t next_int(const std::string& expected);
+  void expect(const std::string& token);
+  void skip_line();          // skips the rest of the current line
+  std::string rest_of_line();
+  int line() const { return line_; }
+  [[noreturn]] void fail(const std::string& expected, const std::string& got) const;
+
+ private:
+  void skip_space();
+  std::string text_;
+  std::string source_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+};
+
+}  // namespace softsim::mesh

@@ -1,0 +1,13 @@
+#pragma once
+// Legacy VTK ASCII UNSTRUCTURED_GRID reader (classic "CELLS n size" layout and the 5.1
+// OFFSETS/CONNECTIVITY layout). Keeps VTK_TETRA cells; integer CELL_DATA scalars become
+// element tags of the same name (e.g. "materials" of the breast mesh).
+#include <string>
+
+#include "softsim/mesh/tet_mesh.hpp"
+
+namespace softsim::mesh {
+
+TetMesh read_vtk_legacy(const std::string& text, const std::string& source);
+
+}  // namespace softsim::mesh

@@ -1,0 +1,92 @@
+// The artifact envelope and strict reading: every complaint names the file and JSON pointer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "softsim/io/artifact.hpp"
+#include "softsim/io/errors.hpp"
+#include "softsim/io/json_reader.hpp"
+#include "softsim/io/sha256.hpp"
+
+using namespace softsim;
+
+TEST(Sha256, KnownVectors) {
+  EXPECT_EQ(io::sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(io::sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(io::sha256_hex(std::string(1000, 'a')),
+            "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
+}
+
+namespace {
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(JsonReader, MissingFieldNamesPointer) {
+  const nlohmann::json j = {{"a", {{"b", 1}}}};
+  io::JsonReader r(j, "cfg.json");
+  EXPECT_EQ(message_of([&] { r.at("a").at("c"); }), "cfg.json: /a/c: missing required field");
+}
+
+TEST(JsonReader, WrongTypeNamesExpectation) {
+  const nlohmann::json j = {{"E", "soft"}};
+  io::JsonReader r(j, "cfg.json");
+  EXPECT_EQ(message_of([&] { r.get_double("E"); }),
+            "cfg.json: /E: expected a number, got string \"soft\"");
+}
+
+TEST(JsonReader, UnknownFieldRejected) {
+  const nlohmann::json j = {{"E", 1.0}, {"nu_typo", 0.3}};
+  io::JsonReader r(j, "cfg.json");
+  r.get_double("E");
+  EXPECT_EQ(message_of([&] { r.reject_unknown(); }), "cfg.json: /nu_typo: unknown field");
+}
+
+TEST(JsonReader, PositiveAndChoiceChecks) {
+  const nlohmann::json j = {{"E", -3.0}, {"kind", "cube"}, {"n", 2.5}};
+  io::JsonReader r(j, "c.json");
+  EXPECT_NE(message_of([&] { r.get_positive("E"); }).find("/E: expected a positive number"), std::string::npos);
+  EXPECT_NE(message_of([&] { r.get_choice("kind", {"cuboid", "file"}); }).find("one of \"cuboid\", \"file\""),
+            std::string::npos);
+  EXPECT_NE(message_of([&] { r.get_int("n"); }).find("expected an integer"), std::string::npos);
+}
+
+TEST(JsonReader, TruncatedFileIsInputError) {
+  const auto path = std::filesystem::temp_directory_path() / "softsim_truncated.json";
+  std::ofstream(path) << "{\"a\": [1, 2";
+  EXPECT_NE(message_of([&] { io::JsonReader::parse_file(path.string()); }).find("invalid JSON"), std::string::npos);
+  std::ofstream(path) << "{\"a\": NaN}";
+  EXPECT_NE(message_of([&] { io::JsonReader::parse_file(path.string()); }).find("invalid JSON"), std::string::npos);
+  std::filesystem::remove(path);
+}
+
+TEST(Artifact, RoundTripAndSchemaCheck) {
+  const auto path = (std::filesystem::temp_directory_path() / "softsim_artifact.json").string();
+  io::Provenance p;
+  p.tool = "test";
+  p.seed = 7;
+  io::write_artifact(path, "thing", 2, p, {{"x", 1.5}});
+  const auto a = io::Artifact::read(path, "thing", 2);
+  EXPECT_DOUBLE_EQ(a.payload().get_double("x"), 1.5);
+  EXPECT_EQ(a.document()["provenance"]["seed"], 7);
+  EXPECT_EQ(a.sha256(), io::sha256_file(path));
+  EXPECT_THROW(io::Artifact::read(path, "other", 2), InputError);
+  EXPECT_THROW(io::Artifact::read(path, "thing", 1), InputError);
+  std::filesystem::remove(path);
+}
+
+TEST(Artifact, NonFinitePayloadIsNumericalFailureAndNothingIsWritten) {
+  const auto path = (std::filesystem::temp_directory_path() / "softsim_nan.json").string();
+  std::filesystem::remove(path);
+  io::Provenance p;
+  EXPECT_THROW(io::write_artifact(path, "thing", 1, p, {{"u", {1.0, std::nan("")}}}), NumericalError);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}

@@ -1,0 +1,176 @@
+// Mesh invariants: conformity of the alternating 5-tet split, positive volumes summing to the
+// box, a closed boundary of Euler characteristic 2, the paper's counts (000 §2.2.1, §3.1),
+// and the importers on the real organ meshes shipped in experiments/data/meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "softsim/io/errors.hpp"
+#include "softsim/io/mesh_files.hpp"
+#include "softsim/mesh/cuboid.hpp"
+#include "softsim/mesh/gmsh_reader.hpp"
+#include "softsim/mesh/quality.hpp"
+#include "softsim/mesh/surface.hpp"
+#include "softsim/mesh/vtk_legacy_reader.hpp"
+
+using namespace softsim;
+
+namespace {
+mesh::TetMesh cuboid(int nx, int ny, int nz, Eigen::Vector3d size) {
+  mesh::CuboidSpec s;
+  s.cells = {nx, ny, nz};
+  s.size = size;
+  return mesh::make_cuboid(s);
+}
+const std::string kMeshDir = std::string(SOFTSIM_SOURCE_DIR) + "/experiments/data/meshes/";
+}  // namespace
+
+TEST(Cuboid, PaperCounts120NodesAnd300Tets) {
+  const auto m = cuboid(3, 4, 5, {0.03, 0.04, 0.05});  // 4 x 5 x 6 nodes (000 Fig. 3)
+  EXPECT_EQ(m.num_nodes(), 120);
+  EXPECT_EQ(m.num_tets(), 300);
+}
+
+TEST(Cuboid, PaperCounts3564NodesAnd14450Tets) {
+  const auto m = cuboid(17, 17, 10, {0.17, 0.17, 0.10});  // 000 §3.1, Table 1
+  EXPECT_EQ(m.num_nodes(), 3564);
+  EXPECT_EQ(m.num_tets(), 14450);
+}
+
+TEST(Cuboid, VolumesPositiveAndSumToBox) {
+  const Eigen::Vector3d size(0.03, 0.02, 0.05);
+  const auto m = cuboid(4, 3, 5, size);
+  double total = 0;
+  for (const auto& t : m.tets) {
+    const double v = mesh::signed_volume(m, t);
+    EXPECT_GT(v, 0);
+    total += v;
+  }
+  EXPECT_NEAR(total, size.prod(), 1e-12 * size.prod());
+}
+
+TEST(Cuboid, ConformingFacesAndClosedSurface) {
+  const auto m = cuboid(4, 3, 5, {1, 1, 1});
+  const auto c = mesh::census(m);
+  EXPECT_EQ(c.overshared_faces, 0);
+  // Each cube face is split into 2 triangles: the box surface has 2 * 2 (nx ny + ny nz + nz nx).
+  EXPECT_EQ(c.boundary_faces, 4 * (4 * 3 + 3 * 5 + 5 * 4));
+  // Every face is used once (boundary) or twice (interior): 4 faces per tet in total.
+  EXPECT_EQ(2 * c.interior_faces + c.boundary_faces, 4 * m.num_tets());
+  EXPECT_EQ(c.euler_characteristic, 2);
+  EXPECT_EQ(c.non_manifold_edges, 0);
+  EXPECT_EQ(c.inward_triangles, 0);
+  EXPECT_EQ(m.boundary.size(), static_cast<std::size_t>(c.boundary_faces));
+}
+
+TEST(Cuboid, SplitsAlternateSoThatOneSplitAloneWouldNotConform) {
+  // With a single cell both splits are valid, and the two cells of a 2x1x1 box must use
+  // different splits: the shared face then carries one diagonal, seen by both cells.
+  const auto m = cuboid(2, 1, 1, {2, 1, 1});
+  const auto c = mesh::census(m);
+  EXPECT_EQ(c.overshared_faces, 0);
+  EXPECT_EQ(c.boundary_faces, 4 * (2 * 1 + 1 * 1 + 1 * 2));
+}
+
+TEST(Cuboid, NodeSetsAndLayerTags) {
+  const auto m = cuboid(3, 3, 4, {1, 1, 1});
+  EXPECT_EQ(m.node_sets.at("bottom").size(), 16u);
+  EXPECT_EQ(m.node_sets.at("top").size(), 16u);
+  for (int v : m.node_sets.at("top")) EXPECT_DOUBLE_EQ(m.nodes[v].z(), 1.0);
+  const auto& layer = m.element_tags.at("layer");
+  ASSERT_EQ(layer.size(), m.tets.size());
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    double zc = 0;
+    for (int v : m.tets[e]) zc += m.nodes[v].z() / 4;
+    EXPECT_EQ(layer[e], static_cast<int>(std::floor(zc * 4)));
+  }
+}
+
+TEST(Quality, RegularCubeSplitAngles) {
+  const auto m = cuboid(1, 1, 1, {1, 1, 1});
+  const auto q = mesh::quality_report(m);
+  EXPECT_NEAR(q.total_volume, 1.0, 1e-14);
+  EXPECT_NEAR(q.max_volume, 1.0 / 3.0, 1e-14);  // the central regular tet
+  EXPECT_NEAR(q.min_volume, 1.0 / 6.0, 1e-14);  // the corner tets
+  // Corner tets: 90° at the right-angle corner and acos(1/sqrt 3) = 54.7356° along the
+  // slanted face; the central regular tet has acos(1/3) = 70.53°.
+  EXPECT_NEAR(q.min_dihedral_deg, std::acos(1.0 / std::sqrt(3.0)) * 180.0 / M_PI, 1e-9);
+  EXPECT_NEAR(q.max_dihedral_deg, 90.0, 1e-9);
+  // The corner tet's smallest altitude is from its corner to the equilateral face: 1/sqrt(3).
+  EXPECT_NEAR(q.min_altitude, 1.0 / std::sqrt(3.0), 1e-12);
+  EXPECT_TRUE(q.slivers.empty());
+}
+
+TEST(Quality, FlattenedTetIsFlaggedAsSliver) {
+  mesh::TetMesh m;
+  m.nodes = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 0.01}};
+  m.tets = {{0, 1, 2, 3}};
+  const auto q = mesh::quality_report(m, 5.0);
+  EXPECT_EQ(q.slivers.size(), 1u);
+}
+
+TEST(GmshReader, Version22WithGapsAndPhysicalGroups) {
+  const std::string text =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n50 1 1 1\n$EndNodes\n"
+      "$Elements\n3\n1 2 2 7 1 10 20 30\n2 4 2 3 1 10 20 30 40\n3 4 2 5 1 20 30 40 50\n$EndElements\n";
+  auto m = mesh::read_gmsh(text, "inline.msh");
+  ASSERT_EQ(m.num_tets(), 2);
+  EXPECT_EQ(m.num_nodes(), 5);
+  EXPECT_EQ(m.element_tags.at("physical"), (std::vector<int>{3, 5}));
+}
+
+TEST(GmshReader, Version41WithEntities) {
+  const std::string text =
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+      "$Entities\n0 0 0 1\n7 0 0 0 1 1 1 1 42 0\n$EndEntities\n"
+      "$Nodes\n1 4 1 9\n3 7 0 4\n1\n3\n5\n9\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n"
+      "$Elements\n1 1 1 1\n3 7 4 1\n1 1 3 5 9\n$EndElements\n";
+  auto m = mesh::read_gmsh(text, "inline41.msh");
+  ASSERT_EQ(m.num_tets(), 1);
+  EXPECT_EQ(m.element_tags.at("physical"), (std::vector<int>{42}));
+}
+
+TEST(GmshReader, RejectsGarbageWithFileAndLine) {
+  try {
+    mesh::read_gmsh("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 zero\n", "bad.msh");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.msh: line 6"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(mesh::read_gmsh("hello world", "notamesh.msh"), InputError);
+}
+
+TEST(VtkReader, ClassicLayout) {
+  const std::string text =
+      "# vtk DataFile Version 3.0\ntitle\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 2 1 3\nCELL_TYPES 1\n10\n"
+      "CELL_DATA 1\nSCALARS materials int 1\nLOOKUP_TABLE default\n2\n";
+  auto m = mesh::read_vtk_legacy(text, "inline.vtk");
+  ASSERT_EQ(m.num_tets(), 1);
+  EXPECT_EQ(m.element_tags.at("materials"), std::vector<int>{2});
+}
+
+TEST(ImportedMeshes, SofaLiverMsh1) {
+  const auto m = io::load_mesh_file(kMeshDir + "sofa_liver.msh", {});
+  EXPECT_EQ(m.num_nodes(), 181);
+  EXPECT_EQ(m.num_tets(), 596);
+  const auto c = mesh::census(m);
+  EXPECT_EQ(c.overshared_faces, 0);
+  EXPECT_EQ(c.euler_characteristic, 2);
+  const auto q = mesh::quality_report(m);
+  EXPECT_NEAR(q.total_volume, 36.56, 0.01);  // the data README's measured volume
+}
+
+TEST(ImportedMeshes, SofaLiver2SparseIds) {
+  const auto m = io::load_mesh_file(kMeshDir + "sofa_liver2.msh", {});
+  EXPECT_EQ(m.num_nodes(), 507);
+  EXPECT_EQ(m.num_tets(), 1493);
+  EXPECT_NEAR(mesh::quality_report(m).total_volume, 1.125, 0.001);
+}
+
+TEST(ImportedMeshes, ScaleConvertsUnits) {
+  io::MeshFileOptions opt;
+  opt.scale = 0.1;  // decimetres -> metres
+  const auto m = io::load_mesh_file(kMeshDir + "sofa_liver2.msh", opt);
+  EXPECT_NEAR(mesh::quality_report(m).total_volume, 1.125e-3, 1e-6);
+}
