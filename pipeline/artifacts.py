@@ -1,0 +1,66 @@
+"""The artifact envelope on the Python side, identical in shape to cpp/softsim/io/artifact.cpp:
+{"schema": {"name", "version"}, "provenance": {...}, "payload": {...}}, written atomically."""
+import json
+import math
+import os
+import subprocess
+from pathlib import Path
+
+from pipeline.hashing import file_hash
+from pipeline.paths import ROOT
+
+
+def git_commit() -> str:
+    try:
+        return subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
+                              text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def _check_finite(value, where=""):
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"non-finite value at {where or '/'}")
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _check_finite(v, f"{where}/{k}")
+    elif isinstance(value, (list, tuple)):
+        for i, v in enumerate(value):
+            _check_finite(v, f"{where}/{i}")
+
+
+def write_json_atomic(path, document) -> None:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f"{path.name}.tmp.{os.getpid()}")
+    with open(tmp, "w") as f:
+        json.dump(document, f, allow_nan=False)
+        f.write("\n")
+    os.replace(tmp, path)
+
+
+def write_artifact(out_path, schema: str, version: int, tool: str, config: dict, payload: dict,
+                   inputs=(), seed=None) -> None:
+    """Writes an artifact; refuses NaN/Inf anywhere in the payload (a numerical failure upstream)."""
+    _check_finite(payload)
+    document = {
+        "schema": {"name": schema, "version": version},
+        "provenance": {
+            "tool": tool,
+            "version": "python",
+            "git_commit": git_commit(),
+            "config": config,
+            "inputs": {str(p): file_hash(p) for p in inputs},
+            "seed": seed,
+        },
+        "payload": payload,
+    }
+    write_json_atomic(out_path, document)
+
+
+def read_artifact(path, schema=None) -> dict:
+    with open(path) as f:
+        doc = json.load(f)
+    if schema is not None and doc.get("schema", {}).get("name") != schema:
+        raise ValueError(f"{path}: expected schema {schema!r}, got {doc.get('schema')!r}")
+    return doc

@@ -1,0 +1,97 @@
+"""Command line of the pipeline:
+  run EXPERIMENT|all [--stage NAME] [--force] [-j N]
+  list
+  clean [--results]
+  bench [--filter REGEX]
+Exit codes: 0 ok, 1 a run failed, 2 a malformed experiment or command line."""
+import argparse
+import shutil
+import sys
+
+from pipeline import experiment as experiment_mod
+from pipeline import report_md
+from pipeline.errors import ExperimentError
+from pipeline.paths import CACHE, RESULTS
+
+
+def _progress_echo():
+    """Plain lines (a log that reads well in CI); a tqdm bar on a terminal when available."""
+    return lambda line: print(line, flush=True)
+
+
+def cmd_run(args) -> int:
+    from pipeline.runner import Runner, write_manifest
+
+    names = experiment_mod.list_experiments() if args.experiment == "all" else [args.experiment]
+    if args.stage and args.experiment == "all":
+        raise ExperimentError("command line: --stage needs one experiment, not all")
+    experiments = [experiment_mod.load(n) for n in names]
+    runner = Runner(jobs=args.jobs, force=args.force,
+                    force_stages=[args.stage] if args.stage else [], echo=_progress_echo())
+    ok = True
+    for exp in experiments:
+        run_ids = experiment_mod.closure(exp, args.stage) if args.stage else list(exp.runs)
+        ok = runner.run_experiment(exp, run_ids) and ok
+    write_manifest(runner, experiments)
+    report_md.assemble()
+    counts = {}
+    for o in runner.outcomes.values():
+        counts[o.status] = counts.get(o.status, 0) + 1
+    print("pipeline: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items())), flush=True)
+    return 0 if ok else 1
+
+
+def cmd_list(_args) -> int:
+    for name in experiment_mod.list_experiments():
+        try:
+            exp = experiment_mod.load(name)
+            stages = ", ".join(f"{s}({len(r)})" if len(r) > 1 else s for s, r in exp.stage_runs.items())
+            print(f"{name:28s} {exp.doc.get('description', '')}\n{'':28s} stages: {stages}")
+        except ExperimentError as e:
+            print(f"{name:28s} INVALID: {e}")
+    return 0
+
+
+def cmd_clean(args) -> int:
+    shutil.rmtree(CACHE, ignore_errors=True)
+    print(f"pipeline: removed the run cache")
+    if args.results:
+        for p in RESULTS.glob("*"):
+            if p.is_dir():
+                shutil.rmtree(p)
+            else:
+                p.unlink()
+        print("pipeline: removed results/")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from pipeline.bench import run_benchmarks
+    status = run_benchmarks(args.filter)
+    report_md.assemble()
+    return status
+
+
+def main(argv) -> int:
+    parser = argparse.ArgumentParser(prog="pipeline", description="Run the papers' experiments.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    p_run = sub.add_parser("run", help="run an experiment (or all)")
+    p_run.add_argument("experiment")
+    p_run.add_argument("--stage", help="rerun this stage (its dependencies come from the cache)")
+    p_run.add_argument("--force", action="store_true", help="rerun every selected run")
+    p_run.add_argument("-j", "--jobs", type=int, default=1, help="parallel runs")
+    p_run.set_defaults(func=cmd_run)
+    p_list = sub.add_parser("list", help="list the experiments and their stages")
+    p_list.set_defaults(func=cmd_list)
+    p_clean = sub.add_parser("clean", help="remove the run cache")
+    p_clean.add_argument("--results", action="store_true", help="also remove results/")
+    p_clean.set_defaults(func=cmd_clean)
+    p_bench = sub.add_parser("bench", help="run the Google Benchmark executables")
+    p_bench.add_argument("--filter", default="", help="benchmark name regex")
+    p_bench.set_defaults(func=cmd_bench)
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except ExperimentError as e:
+        print(f"pipeline: error: {e}", file=sys.stderr)
+        return 2

@@ -1,0 +1,254 @@
+"""Experiments: strict loading of experiments/<name>.json and expansion of sweeps into runs.
+
+A stage is one of three kinds (see pipeline/EXPERIMENTS.md):
+  tool    a C++ executable of build/bin        -> one artifact per run
+  python  a module with run(ctx)               -> one artifact per run
+  report  a module with report(ctx)            -> tables and plots in results/<results>/
+"""
+import copy
+import itertools
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Dict, List, Optional
+
+from pipeline.errors import ExperimentError
+from pipeline.paths import EXPERIMENTS
+
+REF = re.compile(r"^@([A-Za-z0-9_\-]+)(?:#(\d+))?$")
+TOP_KEYS = {"description", "results", "paper", "stages", "notes"}
+STAGE_KEYS = {
+    "tool": {"tool", "config", "sweep", "mode", "args", "exclusive", "description"},
+    "python": {"python", "config", "sweep", "exclusive", "description"},
+    "report": {"report", "inputs", "params", "description"},
+}
+
+
+@dataclass
+class Run:
+    """One execution of a stage (a stage with a sweep has several)."""
+    experiment: str
+    stage: str
+    kind: str                      # tool | python | report
+    target: str                    # executable name or module
+    index: Optional[int]           # position in the sweep, None when not swept
+    config: Dict[str, Any]
+    sweep: Dict[str, Any] = field(default_factory=dict)
+    mode: Optional[str] = None
+    args: List[str] = field(default_factory=list)
+    exclusive: bool = False
+    inputs: List[str] = field(default_factory=list)   # report: input stage names
+    params: Dict[str, Any] = field(default_factory=dict)
+    deps: List[str] = field(default_factory=list)     # run ids this run needs
+
+    @property
+    def id(self) -> str:
+        return self.stage if self.index is None else f"{self.stage}#{self.index}"
+
+
+@dataclass
+class Experiment:
+    name: str
+    path: Path
+    doc: Dict[str, Any]
+    runs: Dict[str, Run]           # run id -> run, in file order
+    stage_runs: Dict[str, List[str]]
+
+    @property
+    def results_subdir(self) -> str:
+        return self.doc.get("results", self.name)
+
+
+def _fail(path, pointer, expected):
+    raise ExperimentError(f"{path}: {pointer or '/'}: {expected}")
+
+
+def _set_dotted(config: dict, dotted: str, value, path, pointer):
+    keys = dotted.split(".")
+    node = config
+    for k in keys[:-1]:
+        if isinstance(node, list) and k.isdigit() and int(k) < len(node):
+            node = node[int(k)]
+            continue
+        if not isinstance(node, dict):
+            _fail(path, pointer, f"a sweep path through objects, but {dotted!r} meets a non-object")
+        node = node.setdefault(k, {})
+    last = keys[-1]
+    if isinstance(node, list) and last.isdigit() and int(last) < len(node):
+        node[int(last)] = value
+    elif isinstance(node, dict):
+        node[last] = value
+    else:
+        _fail(path, pointer, f"a sweep path through objects, but {dotted!r} meets a non-object")
+
+
+def find_refs(value) -> List[tuple]:
+    """All (stage, index-or-None) references "@stage" / "@stage#k" inside a config."""
+    out = []
+    if isinstance(value, str):
+        m = REF.match(value)
+        if m:
+            out.append((m.group(1), None if m.group(2) is None else int(m.group(2))))
+    elif isinstance(value, dict):
+        for v in value.values():
+            out.extend(find_refs(v))
+    elif isinstance(value, list):
+        for v in value:
+            out.extend(find_refs(v))
+    return out
+
+
+def substitute_refs(value, resolve):
+    """Replaces every reference string by resolve(stage, index)."""
+    if isinstance(value, str):
+        m = REF.match(value)
+        if m:
+            return resolve(m.group(1), None if m.group(2) is None else int(m.group(2)))
+        return value
+    if isinstance(value, dict):
+        return {k: substitute_refs(v, resolve) for k, v in value.items()}
+    if isinstance(value, list):
+        return [substitute_refs(v, resolve) for v in value]
+    return value
+
+
+def list_experiments() -> List[str]:
+    return sorted(p.stem for p in EXPERIMENTS.glob("*.json"))
+
+
+def load(name: str) -> Experiment:
+    path = EXPERIMENTS / f"{name}.json"
+    if not path.exists():
+        known = ", ".join(list_experiments())
+        raise ExperimentError(f"{path.name}: no such experiment (known: {known})")
+    try:
+        doc = json.loads(path.read_text())
+    except json.JSONDecodeError as e:
+        raise ExperimentError(f"{path}: invalid JSON: {e}") from None
+    if not isinstance(doc, dict):
+        _fail(path, "/", "expected an object")
+    for k in doc:
+        if k not in TOP_KEYS:
+            _fail(path, f"/{k}", f"unknown field (expected one of {sorted(TOP_KEYS)})")
+    stages = doc.get("stages")
+    if not isinstance(stages, dict) or not stages:
+        _fail(path, "/stages", "expected a non-empty object of stages")
+
+    runs: Dict[str, Run] = {}
+    stage_runs: Dict[str, List[str]] = {}
+    for stage, spec in stages.items():
+        ptr = f"/stages/{stage}"
+        if not re.match(r"^[A-Za-z0-9_\-]+$", stage):
+            _fail(path, ptr, "expected a stage name of letters, digits, _ and -")
+        if not isinstance(spec, dict):
+            _fail(path, ptr, "expected an object")
+        kinds = [k for k in STAGE_KEYS if k in spec]
+        if len(kinds) != 1:
+            _fail(path, ptr, "expected exactly one of \"tool\", \"python\", \"report\"")
+        kind = kinds[0]
+        for k in spec:
+            if k not in STAGE_KEYS[kind]:
+                _fail(path, f"{ptr}/{k}", f"unknown field for a {kind} stage")
+        target = spec[kind]
+        if not isinstance(target, str) or not target:
+            _fail(path, f"{ptr}/{kind}", "expected a non-empty string")
+        if kind == "report":
+            inputs = spec.get("inputs", [])
+            if not isinstance(inputs, list) or not all(isinstance(i, str) for i in inputs):
+                _fail(path, f"{ptr}/inputs", "expected a list of stage names")
+            for i, inp in enumerate(inputs):
+                if inp not in stages:
+                    _fail(path, f"{ptr}/inputs/{i}", f"expected a stage of this experiment, got {inp!r}")
+            params = spec.get("params", {})
+            if not isinstance(params, dict):
+                _fail(path, f"{ptr}/params", "expected an object")
+            run = Run(name, stage, kind, target, None, {}, inputs=list(inputs), params=params)
+            runs[run.id] = run
+            stage_runs[stage] = [run.id]
+            continue
+        config = spec.get("config", {})
+        if not isinstance(config, dict):
+            _fail(path, f"{ptr}/config", "expected an object")
+        sweep = spec.get("sweep", {})
+        if not isinstance(sweep, dict):
+            _fail(path, f"{ptr}/sweep", "expected an object of dotted path -> list of values")
+        for k, v in sweep.items():
+            if not isinstance(v, list) or not v:
+                _fail(path, f"{ptr}/sweep/{k}", "expected a non-empty list of values")
+        mode = spec.get("mode")
+        if mode is not None and not isinstance(mode, str):
+            _fail(path, f"{ptr}/mode", "expected a string")
+        args = spec.get("args", [])
+        if not isinstance(args, list) or not all(isinstance(a, str) for a in args):
+            _fail(path, f"{ptr}/args", "expected a list of strings")
+        exclusive = spec.get("exclusive", False)
+        if not isinstance(exclusive, bool):
+            _fail(path, f"{ptr}/exclusive", "expected true or false")
+        combos = [dict(zip(sweep.keys(), values)) for values in itertools.product(*sweep.values())] \
+            if sweep else [None]
+        ids = []
+        for idx, combo in enumerate(combos):
+            cfg = copy.deepcopy(config)
+            if combo:
+                for dotted, value in combo.items():
+                    _set_dotted(cfg, dotted, copy.deepcopy(value), path, f"{ptr}/sweep/{dotted}")
+            run = Run(name, stage, kind, target, idx if combo is not None else None, cfg,
+                      sweep=combo or {}, mode=mode, args=list(args), exclusive=exclusive)
+            runs[run.id] = run
+            ids.append(run.id)
+        stage_runs[stage] = ids
+
+    # Dependencies: references inside configs, and report inputs.
+    for run in runs.values():
+        if run.kind == "report":
+            run.deps = [rid for s in run.inputs for rid in stage_runs[s]]
+            continue
+        for stage, idx in find_refs(run.config):
+            if stage not in stage_runs:
+                _fail(path, f"/stages/{run.stage}/config", f"reference @{stage} names no stage")
+            if stages[stage].get("report"):
+                _fail(path, f"/stages/{run.stage}/config", f"reference @{stage} names a report")
+            ids = stage_runs[stage]
+            if idx is None:
+                if len(ids) != 1:
+                    _fail(path, f"/stages/{run.stage}/config",
+                          f"@{stage} is swept ({len(ids)} runs): name one as @{stage}#k")
+                run.deps.append(ids[0])
+            else:
+                if idx >= len(ids) or stage_runs[stage][0] == stage:
+                    _fail(path, f"/stages/{run.stage}/config", f"@{stage}#{idx} names no run")
+                run.deps.append(f"{stage}#{idx}")
+    _check_acyclic(path, runs)
+    return Experiment(name, path, doc, runs, stage_runs)
+
+
+def _check_acyclic(path, runs: Dict[str, Run]):
+    state: Dict[str, int] = {}
+
+    def visit(rid, chain):
+        if state.get(rid) == 2:
+            return
+        if state.get(rid) == 1:
+            _fail(path, "/stages", "expected no cycle, got " + " -> ".join(chain + [rid]))
+        state[rid] = 1
+        for d in runs[rid].deps:
+            visit(d, chain + [rid])
+        state[rid] = 2
+
+    for rid in runs:
+        visit(rid, [])
+
+
+def closure(exp: Experiment, stage: str) -> List[str]:
+    """Run ids needed for `stage`: its runs and, transitively, their dependencies."""
+    if stage not in exp.stage_runs:
+        raise ExperimentError(f"{exp.path.name}: no stage {stage!r} (stages: {', '.join(exp.stage_runs)})")
+    needed, todo = set(), list(exp.stage_runs[stage])
+    while todo:
+        rid = todo.pop()
+        if rid in needed:
+            continue
+        needed.add(rid)
+        todo.extend(exp.runs[rid].deps)
+    return [rid for rid in exp.runs if rid in needed]

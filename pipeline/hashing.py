@@ -1,0 +1,33 @@
+"""Content hashes for the cache keys."""
+import hashlib
+import json
+from functools import lru_cache
+from pathlib import Path
+
+
+def sha256_bytes(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def sha256_file(path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+@lru_cache(maxsize=None)
+def sha256_file_cached(path: str, mtime_ns: int, size: int) -> str:
+    return sha256_file(path)
+
+
+def file_hash(path) -> str:
+    """sha256 of a file, memoised on (path, mtime, size) within one pipeline invocation."""
+    p = Path(path)
+    st = p.stat()
+    return sha256_file_cached(str(p), st.st_mtime_ns, st.st_size)
+
+
+def sha256_json(value) -> str:
+    return sha256_bytes(json.dumps(value, sort_keys=True, separators=(",", ":")).encode())

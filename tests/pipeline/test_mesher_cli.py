@@ -1,0 +1,104 @@
+"""The mesher executable: the command-line contract, bad input, and the VTU read back by an
+independent reader (meshio)."""
+import json
+
+import pytest
+
+from conftest import ROOT, run_tool, write_json
+
+CUBOID = {"source": {"kind": "cuboid", "cells": [3, 4, 5], "size": [0.03, 0.04, 0.05]}}
+
+
+def test_help_and_version():
+    r = run_tool("mesher", "--help")
+    assert r.returncode == 0 and "--config FILE" in r.stdout
+    r = run_tool("mesher", "--version")
+    assert r.returncode == 0 and r.stdout.startswith("mesher ")
+
+
+def test_cuboid_artifact_envelope(tmp_path):
+    cfg = write_json(tmp_path / "c.json", CUBOID)
+    out = tmp_path / "m.json"
+    r = run_tool("mesher", "--config", cfg, "--out", out)
+    assert r.returncode == 0, r.stderr
+    doc = json.loads(out.read_text())
+    assert doc["schema"] == {"name": "tet_mesh", "version": 1}
+    prov = doc["provenance"]
+    assert prov["tool"] == "mesher" and prov["config"] == CUBOID and len(prov["git_commit"]) > 0
+    pl = doc["payload"]
+    assert len(pl["nodes"]) == 120 and len(pl["tets"]) == 300
+    assert pl["units"] == "m"
+    assert pl["quality"]["tets"] == 300
+
+
+def test_imported_mesh_records_input_hash(tmp_path):
+    import hashlib
+    src = "experiments/data/meshes/sofa_liver.msh"
+    cfg = write_json(tmp_path / "c.json", {"source": {"kind": "file", "path": src, "scale": 0.01}})
+    out = tmp_path / "m.json"
+    r = run_tool("mesher", "--config", cfg, "--out", out)
+    assert r.returncode == 0, r.stderr
+    prov = json.loads(out.read_text())["provenance"]
+    assert prov["inputs"][src] == hashlib.sha256((ROOT / src).read_bytes()).hexdigest()
+
+
+def test_vtu_read_back_with_meshio(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    cfg = dict(CUBOID, vtu=str(tmp_path / "m.vtu"))
+    out = tmp_path / "m.json"
+    r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", cfg), "--out", out)
+    assert r.returncode == 0, r.stderr
+    m = meshio.read(tmp_path / "m.vtu")
+    pl = json.loads(out.read_text())["payload"]
+    assert m.points.shape == (120, 3)
+    assert m.cells_dict["tetra"].shape == (300, 4)
+    assert (m.cells_dict["tetra"] == pl["tets"]).all()
+    assert list(m.cell_data_dict["layer"]["tetra"]) == pl["element_tags"]["layer"]
+
+
+BAD_CONFIGS = {
+    "truncated": ('{"source": {"kind": "cuboid"', "invalid JSON"),
+    "not_object": ("[1, 2]", "expected a JSON object"),
+    "missing_source": ({}, "/source: missing required field"),
+    "unknown_field": ({**CUBOID, "colour": "red"}, "/colour: unknown field"),
+    "wrong_kind": ({"source": {"kind": "sphere"}}, "/source/kind: expected one of"),
+    "wrong_type": ({"source": {"kind": "cuboid", "cells": "many", "size": [1, 1, 1]}}, "/source/cells: expected an array"),
+    "negative_size": ({"source": {"kind": "cuboid", "cells": [1, 1, 1], "size": [1, -1, 1]}}, "/source/size: expected three positive"),
+    "zero_cells": ({"source": {"kind": "cuboid", "cells": [0, 1, 1], "size": [1, 1, 1]}}, "/source/cells: expected cell counts"),
+    "missing_file": ({"source": {"kind": "file", "path": "no/such/mesh.msh"}}, "no/such/mesh.msh: cannot open file"),
+    "not_a_mesh": ({"source": {"kind": "file", "path": "CMakeLists.txt"}}, "expected a mesh file"),
+    "nan_literal": ('{"source": {"kind": "cuboid", "cells": [1,1,1], "size": [NaN, 1, 1]}}', "invalid JSON"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BAD_CONFIGS))
+def test_bad_config_exit_2_one_line_no_output(tmp_path, name):
+    content, expected = BAD_CONFIGS[name]
+    cfg = write_json(tmp_path / "bad.json", content)
+    out = tmp_path / "out.json"
+    r = run_tool("mesher", "--config", cfg, "--out", out)
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1, r.stderr
+    assert expected in lines[0], lines[0]
+    assert not out.exists()
+
+
+def test_malformed_mesh_file_exit_2(tmp_path):
+    bad = tmp_path / "bad.msh"
+    bad.write_text("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n")
+    cfg = write_json(tmp_path / "c.json", {"source": {"kind": "file", "path": str(bad)}})
+    r = run_tool("mesher", "--config", cfg, "--out", tmp_path / "o.json")
+    assert r.returncode == 2
+    assert "bad.msh: line" in r.stderr
+    assert not (tmp_path / "o.json").exists()
+
+
+def test_degenerate_tet_exit_2(tmp_path):
+    bad = tmp_path / "flat.msh"
+    bad.write_text("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n"
+                   "$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n")
+    cfg = write_json(tmp_path / "c.json", {"source": {"kind": "file", "path": str(bad)}})
+    r = run_tool("mesher", "--config", cfg, "--out", tmp_path / "o.json")
+    assert r.returncode == 2
+    assert "non-zero volume" in r.stderr

@@ -1,0 +1,111 @@
+"""The pipeline: sweep expansion, references, the content-addressed cache (a second run skips
+everything, a changed config reruns only what depends on it), --stage, and bad experiments."""
+import json
+
+import pytest
+
+from conftest import run_pipeline
+
+from pipeline import experiment as experiment_mod
+
+
+def write_experiment(env, name, doc):
+    from pathlib import Path
+    path = Path(env["PIPELINE_EXPERIMENTS"]) / f"{name}.json"
+    path.write_text(json.dumps(doc))
+    return path
+
+
+TWO_MESHES = {
+    "description": "two cuboids and a table",
+    "results": "mesh",
+    "stages": {
+        "cube": {"tool": "mesher", "config": {"source": {"kind": "cuboid", "cells": [1, 1, 1], "size": [0.01, 0.01, 0.01]}},
+                 "sweep": {"source.cells": [[1, 1, 1], [2, 1, 1]]}},
+        "table": {"report": "pipeline.reports.meshes", "inputs": ["cube"], "params": {"order": ["cube"]}},
+    },
+}
+
+
+def test_second_run_skips_everything_and_changed_config_reruns(pipeline_env):
+    write_experiment(pipeline_env, "t", TWO_MESHES)
+    first = run_pipeline(pipeline_env, "run", "t")
+    assert first.returncode == 0, first.stdout + first.stderr
+    assert "pipeline: 3 ran" in first.stdout
+    second = run_pipeline(pipeline_env, "run", "t")
+    assert "pipeline: 3 cached" in second.stdout, second.stdout
+    doc = json.loads(json.dumps(TWO_MESHES))
+    doc["stages"]["cube"]["sweep"]["source.cells"][1] = [3, 1, 1]
+    write_experiment(pipeline_env, "t", doc)
+    third = run_pipeline(pipeline_env, "run", "t")
+    # cube#0 unchanged, cube#1 new, so the table reruns too.
+    assert "cached cube#0" in third.stdout and "ran cube#1" in third.stdout and "ran table" in third.stdout
+
+
+def test_stage_option_reruns_one_stage(pipeline_env):
+    write_experiment(pipeline_env, "t", TWO_MESHES)
+    run_pipeline(pipeline_env, "run", "t")
+    r = run_pipeline(pipeline_env, "run", "t", "--stage", "table")
+    assert "cached cube#0" in r.stdout and "ran table" in r.stdout
+
+
+def test_results_and_manifest_written(pipeline_env):
+    from pathlib import Path
+    write_experiment(pipeline_env, "t", TWO_MESHES)
+    run_pipeline(pipeline_env, "run", "t")
+    results = Path(pipeline_env["PIPELINE_RESULTS"])
+    assert (results / "mesh" / "meshes.md").exists()
+    assert (results / "mesh" / "meshes.csv").exists()
+    manifest = json.loads((results / "manifest.json").read_text())
+    runs = manifest["experiments"]["t"]
+    assert {r["run"] for r in runs} == {"cube#0", "cube#1", "table"}
+    assert all(len(r["key"]) == 64 for r in runs)
+    assert "REPORT.md" in {p.name for p in results.iterdir()}
+
+
+def test_failed_run_is_reported_and_dependents_skipped(pipeline_env):
+    doc = {"stages": {
+        "bad": {"tool": "mesher", "config": {"source": {"kind": "cuboid", "cells": [1, 1, 1], "size": [1, -1, 1]}}},
+        "table": {"report": "pipeline.reports.meshes", "inputs": ["bad"]}}}
+    write_experiment(pipeline_env, "t", doc)
+    r = run_pipeline(pipeline_env, "run", "t")
+    assert r.returncode == 1
+    assert "FAILED bad: exit 2" in r.stdout and "/source/size" in r.stdout
+    assert "skipped table" in r.stdout
+
+
+@pytest.mark.parametrize("doc,expected", [
+    ({"stages": {}}, "/stages: expected a non-empty object"),
+    ({"stages": {"a": {"tool": "mesher", "colour": 1}}}, "/stages/a/colour: unknown field"),
+    ({"stages": {"a": {"tool": "mesher", "config": {"m": "@nope"}}}}, "reference @nope names no stage"),
+    ({"stages": {"a": {"tool": "mesher", "config": {"m": "@b"}}, "b": {"tool": "mesher", "config": {"m": "@a"}}}}, "expected no cycle"),
+    ({"stages": {"a": {"tool": "mesher", "sweep": {"x": []}}}}, "/stages/a/sweep/x: expected a non-empty list"),
+    ({"stages": {"a": {"tool": "mesher", "python": "x"}}}, "expected exactly one of"),
+    ({"stagse": {}}, "/stagse: unknown field"),
+])
+def test_bad_experiment_exit_2(pipeline_env, doc, expected):
+    write_experiment(pipeline_env, "bad", doc)
+    r = run_pipeline(pipeline_env, "run", "bad")
+    assert r.returncode == 2
+    assert expected in r.stderr, r.stderr
+
+
+def test_sweep_cartesian_product_and_references(monkeypatch, tmp_path):
+    monkeypatch.setattr(experiment_mod, "EXPERIMENTS", tmp_path)
+    (tmp_path / "s.json").write_text(json.dumps({"stages": {
+        "m": {"tool": "mesher", "config": {"a": {"b": 0}, "c": 0}, "sweep": {"a.b": [1, 2], "c": ["x", "y", "z"]}},
+        "u": {"tool": "mesher", "config": {"mesh": "@m#4", "all": ["@m#0", "@m#1"]}},
+        "r": {"report": "pipeline.reports.meshes", "inputs": ["u"]}}}))
+    exp = experiment_mod.load("s")
+    assert exp.stage_runs["m"] == [f"m#{k}" for k in range(6)]
+    assert exp.runs["m#4"].config == {"a": {"b": 2}, "c": "y"}
+    assert exp.runs["m#4"].sweep == {"a.b": 2, "c": "y"}
+    assert sorted(exp.runs["u"].deps) == ["m#0", "m#1", "m#4"]
+    assert experiment_mod.closure(exp, "u") == ["m#0", "m#1", "m#4", "u"]
+    assert exp.runs["r"].deps == ["u"]
+
+
+def test_every_shipped_experiment_loads():
+    for name in experiment_mod.list_experiments():
+        exp = experiment_mod.load(name)
+        assert exp.runs, name
