@@ -174,3 +174,16 @@ TEST(ImportedMeshes, ScaleConvertsUnits) {
   const auto m = io::load_mesh_file(kMeshDir + "sofa_liver2.msh", opt);
   EXPECT_NEAR(mesh::quality_report(m).total_volume, 1.125e-3, 1e-6);
 }
+
+TEST(VtkReader, Version51OffsetsConnectivityLayout) {
+  // The layout of the breast mesh (VTK 5.1): OFFSETS/CONNECTIVITY instead of count prefixes.
+  const std::string text =
+      "# vtk DataFile Version 5.1\ntitle\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 float\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\nCELLS 3 8\nOFFSETS vtktypeint64\n0 4 8\n"
+      "CONNECTIVITY vtktypeint64\n0 1 2 3 1 2 3 4\nCELL_TYPES 2\n10\n10\n"
+      "CELL_DATA 2\nSCALARS materials int 1\nLOOKUP_TABLE default\n1 3\n"
+      "POINT_DATA 5\nSCALARS boundaryConditions int 1\nLOOKUP_TABLE default\n1 0 0 0 0\n";
+  auto m = mesh::read_vtk_legacy(text, "inline51.vtk");
+  ASSERT_EQ(m.num_tets(), 2);
+  EXPECT_EQ(m.element_tags.at("materials"), (std::vector<int>{1, 3}));
+}
