@@ -8,7 +8,9 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = ROOT / "build" / "bin"
+BIN = Path(os.environ.get("PIPELINE_BIN", ROOT / "build" / "bin"))
+if not BIN.is_absolute():
+    BIN = ROOT / BIN
 sys.path.insert(0, str(ROOT))
 
 

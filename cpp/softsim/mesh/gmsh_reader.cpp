@@ -52,7 +52,7 @@ struct Builder {
 TetMesh read_v1(TextTokens& tok, const std::string& source) {
   Builder b;
   tok.expect("$NOD");
-  const auto n = tok.next_int("node count");
+  const auto n = tok.next_count("node count");
   if (n < 0) tok.fail("a non-negative node count", std::to_string(n));
   for (std::int64_t i = 0; i < n; ++i) {
     const auto id = tok.next_int("node id");
@@ -62,13 +62,13 @@ TetMesh read_v1(TextTokens& tok, const std::string& source) {
   }
   tok.expect("$ENDNOD");
   tok.expect("$ELM");
-  const auto m = tok.next_int("element count");
+  const auto m = tok.next_count("element count");
   for (std::int64_t i = 0; i < m; ++i) {
     tok.next_int("element id");
     const int type = static_cast<int>(tok.next_int("element type"));
     const int phys = static_cast<int>(tok.next_int("physical region"));
     tok.next_int("elementary region");
-    const auto nn = tok.next_int("number of nodes");
+    const auto nn = tok.next_count("number of nodes");
     if (nn != gmsh_nodes_per_element(type, tok)) tok.fail("the node count of the element type", std::to_string(nn));
     std::vector<std::int64_t> ids(static_cast<std::size_t>(nn));
     for (auto& id : ids) id = tok.next_int("node id");
@@ -95,7 +95,7 @@ TetMesh read_v2(TextTokens& tok, const std::string& source) {
   while (!tok.at_end()) {
     const std::string section = tok.next("a section name");
     if (section == "$Nodes") {
-      const auto n = tok.next_int("node count");
+      const auto n = tok.next_count("node count");
       for (std::int64_t i = 0; i < n; ++i) {
         const auto id = tok.next_int("node id");
         Eigen::Vector3d x;
@@ -106,11 +106,11 @@ TetMesh read_v2(TextTokens& tok, const std::string& source) {
       have_nodes = true;
     } else if (section == "$Elements") {
       if (!have_nodes) tok.fail("$Nodes before $Elements", section);
-      const auto m = tok.next_int("element count");
+      const auto m = tok.next_count("element count");
       for (std::int64_t i = 0; i < m; ++i) {
         tok.next_int("element id");
         const int type = static_cast<int>(tok.next_int("element type"));
-        const auto ntags = tok.next_int("tag count");
+        const auto ntags = tok.next_count("tag count");
         int phys = 0;
         for (std::int64_t t = 0; t < ntags; ++t) {
           const auto v = tok.next_int("tag");
@@ -137,26 +137,26 @@ TetMesh read_v2(TextTokens& tok, const std::string& source) {
 // Physical tags of the volume entities, from $Entities (4.1).
 std::map<int, int> read_entities_v4(TextTokens& tok) {
   std::map<int, int> volume_physical;
-  const auto np = tok.next_int("point entity count");
-  const auto nc = tok.next_int("curve entity count");
-  const auto ns = tok.next_int("surface entity count");
-  const auto nv = tok.next_int("volume entity count");
+  const auto np = tok.next_count("point entity count");
+  const auto nc = tok.next_count("curve entity count");
+  const auto ns = tok.next_count("surface entity count");
+  const auto nv = tok.next_count("volume entity count");
   for (std::int64_t i = 0; i < np; ++i) {
     tok.next_int("point tag");
     for (int c = 0; c < 3; ++c) tok.next_double("a coordinate");
-    const auto nphys = tok.next_int("physical tag count");
+    const auto nphys = tok.next_count("physical tag count");
     for (std::int64_t p = 0; p < nphys; ++p) tok.next_int("physical tag");
   }
   auto read_bounded = [&](std::int64_t count, bool volume) {
     for (std::int64_t i = 0; i < count; ++i) {
       const int tag = static_cast<int>(tok.next_int("entity tag"));
       for (int c = 0; c < 6; ++c) tok.next_double("a bounding-box coordinate");
-      const auto nphys = tok.next_int("physical tag count");
+      const auto nphys = tok.next_count("physical tag count");
       for (std::int64_t p = 0; p < nphys; ++p) {
         const int phys = static_cast<int>(tok.next_int("physical tag"));
         if (volume && p == 0) volume_physical[tag] = phys;
       }
-      const auto nbound = tok.next_int("bounding entity count");
+      const auto nbound = tok.next_count("bounding entity count");
       for (std::int64_t k = 0; k < nbound; ++k) tok.next_int("bounding entity tag");
     }
   };
@@ -176,8 +176,8 @@ TetMesh read_v4(TextTokens& tok, const std::string& source) {
     if (section == "$Entities") {
       volume_physical = read_entities_v4(tok);
     } else if (section == "$Nodes") {
-      const auto blocks = tok.next_int("node block count");
-      tok.next_int("node count");
+      const auto blocks = tok.next_count("node block count");
+      tok.next_count("node count");
       tok.next_int("minimum node tag");
       tok.next_int("maximum node tag");
       for (std::int64_t blk = 0; blk < blocks; ++blk) {
@@ -185,7 +185,7 @@ TetMesh read_v4(TextTokens& tok, const std::string& source) {
         tok.next_int("entity tag");
         const auto parametric = tok.next_int("parametric flag");
         if (parametric != 0) tok.fail("non-parametric nodes (parametric flag 0)", std::to_string(parametric));
-        const auto n = tok.next_int("nodes in block");
+        const auto n = tok.next_count("nodes in block");
         std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
         for (auto& id : ids) id = tok.next_int("node tag");
         for (std::int64_t i = 0; i < n; ++i) {
@@ -198,15 +198,15 @@ TetMesh read_v4(TextTokens& tok, const std::string& source) {
       have_nodes = true;
     } else if (section == "$Elements") {
       if (!have_nodes) tok.fail("$Nodes before $Elements", section);
-      const auto blocks = tok.next_int("element block count");
-      tok.next_int("element count");
+      const auto blocks = tok.next_count("element block count");
+      tok.next_count("element count");
       tok.next_int("minimum element tag");
       tok.next_int("maximum element tag");
       for (std::int64_t blk = 0; blk < blocks; ++blk) {
         tok.next_int("entity dimension");
         const int entity = static_cast<int>(tok.next_int("entity tag"));
         const int type = static_cast<int>(tok.next_int("element type"));
-        const auto n = tok.next_int("elements in block");
+        const auto n = tok.next_count("elements in block");
         const int nn = gmsh_nodes_per_element(type, tok);
         const auto phys_it = volume_physical.find(entity);
         const int phys = phys_it == volume_physical.end() ? 0 : phys_it->second;

@@ -63,6 +63,15 @@ std::int64_t TextTokens::next_int(const std::string& expected) {
   return v;
 }
 
+std::int64_t TextTokens::next_count(const std::string& expected) {
+  const std::string t = next(expected);
+  char* end = nullptr;
+  const long long v = std::strtoll(t.c_str(), &end, 10);
+  if (end == t.c_str() || *end != '\0' || v < 0 || static_cast<std::size_t>(v) > text_.size() - pos_)
+    fail(expected + " (a count no larger than the rest of the file)", t);
+  return v;
+}
+
 void TextTokens::expect(const std::string& token) {
   const std::string t = next("\"" + token + "\"");
   if (t != token) fail("\"" + token + "\"", t);

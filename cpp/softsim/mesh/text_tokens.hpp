@@ -14,6 +14,9 @@ class TextTokens {
   std::string peek();
   double next_double(const std::string& expected);
   std::int64_t next_int(const std::string& expected);
+  // A count of following items: non-negative and no larger than the bytes left in the text
+  // (each item takes at least one byte), so a corrupt count cannot trigger a huge allocation.
+  std::int64_t next_count(const std::string& expected);
   void expect(const std::string& token);
   void skip_line();          // skips the rest of the current line
   std::string rest_of_line();

@@ -31,14 +31,14 @@ TetMesh read_vtk_legacy(const std::string& text, const std::string& source) {
   while (!tok.at_end()) {
     const std::string keyword = tok.next("a section keyword");
     if (keyword == "POINTS") {
-      const auto n = tok.next_int("point count");
+      const auto n = tok.next_count("point count");
       tok.next("a point data type");
       points.resize(static_cast<std::size_t>(n));
       for (auto& p : points)
         for (int c = 0; c < 3; ++c) p[c] = tok.next_double("a coordinate");
     } else if (keyword == "CELLS") {
-      const auto a = tok.next_int("cell count");
-      const auto b = tok.next_int("cell list size");
+      const auto a = tok.next_count("cell count");
+      const auto b = tok.next_count("cell list size");
       if (tok.peek() == "OFFSETS") {
         // VTK 5.1 layout: a offsets, then b connectivity ids.
         tok.next("OFFSETS");
@@ -56,18 +56,18 @@ TetMesh read_vtk_legacy(const std::string& text, const std::string& source) {
         }
       } else {
         for (std::int64_t i = 0; i < a; ++i) {
-          const auto nn = tok.next_int("a cell's point count");
+          const auto nn = tok.next_count("a cell's point count");
           std::vector<std::int64_t> ids(static_cast<std::size_t>(nn));
           for (auto& id : ids) id = tok.next_int("a point index");
           cells.push_back(std::move(ids));
         }
       }
     } else if (keyword == "CELL_TYPES") {
-      const auto n = tok.next_int("cell type count");
+      const auto n = tok.next_count("cell type count");
       types.resize(static_cast<std::size_t>(n));
       for (auto& t : types) t = static_cast<int>(tok.next_int("a cell type"));
     } else if (keyword == "CELL_DATA" || keyword == "POINT_DATA") {
-      const auto n = tok.next_int("data count");
+      const auto n = tok.next_count("data count");
       const bool cell = keyword == "CELL_DATA";
       while (!tok.at_end() && (tok.peek() == "SCALARS" || tok.peek() == "FIELD")) {
         const std::string what = tok.next("SCALARS");
