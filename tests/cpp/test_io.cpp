@@ -8,6 +8,7 @@
 #include "softsim/io/artifact.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/json_reader.hpp"
+#include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/sha256.hpp"
 
 using namespace softsim;
@@ -89,4 +90,55 @@ TEST(Artifact, NonFinitePayloadIsNumericalFailureAndNothingIsWritten) {
   io::Provenance p;
   EXPECT_THROW(io::write_artifact(path, "thing", 1, p, {{"u", {1.0, std::nan("")}}}), NumericalError);
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+namespace {
+nlohmann::json unit_tet_payload() {
+  return {{"units", "m"},
+          {"nodes", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
+          {"tets", {{0, 1, 2, 3}}},
+          {"boundary", nlohmann::json::array()},
+          {"node_sets", {{"top", {3}}}},
+          {"element_tags", {{"layer", {0}}}}};
+}
+std::string mesh_error(const nlohmann::json& payload) {
+  return message_of([&] { io::mesh_from_json(io::JsonReader(payload, "m.json", "/payload")); });
+}
+}  // namespace
+
+TEST(MeshArtifact, ValidPayloadReads) {
+  const auto m = io::mesh_from_json(io::JsonReader(unit_tet_payload(), "m.json", "/payload"));
+  EXPECT_EQ(m.num_tets(), 1);
+  EXPECT_EQ(m.node_sets.at("top"), std::vector<int>{3});
+}
+
+TEST(MeshArtifact, NegativeVolumeNamesElement) {
+  auto p = unit_tet_payload();
+  p["tets"][0] = {0, 2, 1, 3};
+  EXPECT_NE(mesh_error(p).find("m.json: /payload/tets/0: expected a positively oriented tetrahedron"),
+            std::string::npos);
+}
+
+TEST(MeshArtifact, IndexOutOfRangeAndDuplicates) {
+  auto p = unit_tet_payload();
+  p["tets"][0] = {0, 1, 2, 7};
+  EXPECT_NE(mesh_error(p).find("/payload/tets/0/3: expected a node index in [0, 3]"), std::string::npos);
+  p = unit_tet_payload();
+  p["tets"][0] = {0, 1, 1, 3};
+  EXPECT_NE(mesh_error(p).find("4 distinct node indices"), std::string::npos);
+  p = unit_tet_payload();
+  p["node_sets"]["top"] = {-1};
+  EXPECT_NE(mesh_error(p).find("/payload/node_sets/top/0"), std::string::npos);
+}
+
+TEST(MeshArtifact, TagSizeUnitsAndUnknownField) {
+  auto p = unit_tet_payload();
+  p["element_tags"]["layer"] = {0, 1};
+  EXPECT_NE(mesh_error(p).find("one tag per tetrahedron"), std::string::npos);
+  p = unit_tet_payload();
+  p["units"] = "mm";
+  EXPECT_NE(mesh_error(p).find("/payload/units"), std::string::npos);
+  p = unit_tet_payload();
+  p["colour"] = "red";
+  EXPECT_NE(mesh_error(p).find("/payload/colour: unknown field"), std::string::npos);
 }
