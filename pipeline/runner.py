@@ -1,5 +1,7 @@
 """Executes the runs of experiments: cache lookup, tool/module invocation, parallel scheduling."""
+import ast
 import importlib
+import importlib.util
 import json
 import os
 import subprocess
@@ -17,15 +19,35 @@ from pipeline.errors import RunFailed
 from pipeline.hashing import file_hash, sha256_json
 from pipeline.paths import ARTIFACTS, BIN, CONFIGS, LOGS, RESULTS, ROOT, STAMPS, rel
 
-# Report keys also cover the shared helpers a report uses.
-SHARED_REPORT_MODULES = ["tables.py", "plots.py", "context.py"]
-
-
 def module_file(module: str) -> Path:
     spec = importlib.util.find_spec(module)
     if spec is None or spec.origin is None:
         raise RunFailed(module, 2, f"no Python module {module!r}")
     return Path(spec.origin)
+
+
+def pipeline_import_closure(module: str) -> list:
+    """The source files of `module` and of every pipeline.* module it imports, transitively:
+    an edit to a shared helper (tables, plots, a *_common module) changes the key."""
+    seen, todo, files = set(), [module], []
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        try:
+            path = module_file(name)
+        except (RunFailed, ModuleNotFoundError):
+            continue
+        files.append(path)
+        tree = ast.parse(path.read_text(), filename=str(path))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("pipeline"):
+                todo.append(node.module)
+                todo.extend(f"{node.module}.{a.name}" for a in node.names)
+            elif isinstance(node, ast.Import):
+                todo.extend(a.name for a in node.names if a.name.startswith("pipeline"))
+    return sorted(files)
 
 
 class Outcome:
@@ -57,10 +79,8 @@ class Runner:
             if not binary.exists():
                 raise RunFailed(run.id, 2, f"no executable {rel(binary)} (run `make build`)")
             return file_hash(binary)
-        files = [module_file(run.target)]
-        if run.kind == "report":
-            files += [Path(__file__).parent / m for m in SHARED_REPORT_MODULES]
-        return sha256_json([file_hash(f) for f in files])
+        module_file(run.target)  # a clear error when the module does not exist
+        return sha256_json([file_hash(f) for f in pipeline_import_closure(run.target)])
 
     def _dep_outcome(self, exp, rid) -> Outcome:
         return self.outcomes[(exp.name, rid)]

@@ -130,16 +130,22 @@ class ConfigReader:
 
 
 # --------------------------------------------------------------------------- deck writing
+CCX_FIELD_WIDTH = 20
+
+
 def fmt(x: float) -> str:
-    """A float in the deck: shortest round-trip representation (CalculiX reads it as double)."""
-    return repr(float(x))
-
-
-def set_name(name: str) -> str:
-    """A CalculiX set name for one of ours: upper case, letters/digits/underscore, prefixed so
-    it cannot clash with the names the decks use themselves (NALL, EALL)."""
-    clean = re.sub(r"[^A-Za-z0-9_]", "_", name).upper()
-    return ("S_" + clean)[:70]
+    """A float in the deck. CalculiX reads only the first 20 characters of a data field
+    (Fortran f20.0) and silently ignores the rest, so the shortest round-trip representation
+    is used when it fits and otherwise as many significant digits as fit (>= 13)."""
+    x = float(x)
+    if not math.isfinite(x):
+        raise ValueError(f"non-finite number {x!r} in a CalculiX deck")
+    text = repr(x)
+    digits = 16
+    while len(text) > CCX_FIELD_WIDTH:
+        text = f"{x:.{digits}g}"
+        digits -= 1
+    return text
 
 
 def nset_lines(name: str, ccx_nodes) -> list:
@@ -155,7 +161,8 @@ def field_controls_lines(residual_tolerance: float, correction_tolerance: float)
     force relative to the average force) and C^alpha_n (largest correction relative to the
     largest incremental displacement); their defaults (0.005, 0.01) are meant for engineering
     use, a reference solution needs tighter ones."""
-    return ["*CONTROLS, PARAMETERS=FIELD", f"{fmt(residual_tolerance)}, {fmt(correction_tolerance)}"]
+    return ["*CONTROLS, PARAMETERS=FIELD",
+            f"{fmt(residual_tolerance)}, {fmt(correction_tolerance)}"]
 
 
 def static_step_lines(nlgeom: bool, increments: int, max_increments: int, min_increment: float,
@@ -307,7 +314,14 @@ def parse_sta(text: str) -> dict:
             iterations += int(tokens[3])
         except ValueError:
             pass
-    return {"increments": increments, "iterations": iterations, "cutbacks": cutbacks}
+    return {"increments_taken": increments, "iterations": iterations, "cutbacks": cutbacks}
+
+
+def step_statistics(sta_text: str, nlgeom: bool) -> dict:
+    """parse_sta for a NLGEOM step; a linear step is one increment with one solve."""
+    if not nlgeom:
+        return {"increments_taken": 1, "iterations": 1, "cutbacks": 0}
+    return parse_sta(sta_text)
 
 
 def sorted_rows(block: dict, ccx_nodes) -> list:
