@@ -32,7 +32,7 @@ def cmd_run(args) -> int:
     for exp in experiments:
         run_ids = experiment_mod.closure(exp, args.stage) if args.stage else list(exp.runs)
         ok = runner.run_experiment(exp, run_ids) and ok
-    write_manifest(runner, experiments)
+    write_manifest(runner, experiments, complete=args.experiment == "all" and not args.stage)
     report_md.assemble()
     counts = {}
     for o in runner.outcomes.values():

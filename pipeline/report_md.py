@@ -14,7 +14,9 @@ def assemble() -> None:
                      key=lambda p: (ORDER.index(p.name) if p.name in ORDER else len(ORDER), p.name)) \
         if RESULTS.exists() else []
     for d in subdirs:
-        summary = d / "summary.md"
-        if summary.exists():
+        # An area's summary.md first, then any <part>_summary.md of reports sharing the folder.
+        summaries = ([d / "summary.md"] if (d / "summary.md").exists() else []) + \
+            sorted(d.glob("*_summary.md"))
+        for summary in summaries:
             parts.append(summary.read_text().strip() + "\n")
     (RESULTS / "REPORT.md").write_text("\n".join(parts))

@@ -268,10 +268,12 @@ class Runner:
         return out
 
 
-def write_manifest(runner: Runner, experiments) -> None:
+def write_manifest(runner: Runner, experiments, complete: bool = False) -> None:
+    """results/manifest.json: every run's key, config and artifact hash. A run of a subset of
+    the experiments keeps the other experiments' entries; a complete run starts afresh."""
     path = RESULTS / "manifest.json"
     manifest = {"git_commit": git_commit(), "experiments": {}}
-    if path.exists():
+    if path.exists() and not complete:
         try:
             manifest["experiments"] = json.loads(path.read_text()).get("experiments", {})
         except json.JSONDecodeError:
@@ -280,5 +282,6 @@ def write_manifest(runner: Runner, experiments) -> None:
         entries = runner.manifest_entries(exp)
         if entries:
             manifest["experiments"][exp.name] = entries
-    manifest["experiments"] = dict(sorted(manifest["experiments"].items()))
+    known = set(experiment_mod.list_experiments())
+    manifest["experiments"] = dict(sorted((k, v) for k, v in manifest["experiments"].items() if k in known))
     write_json_atomic(path, manifest)

@@ -1,0 +1,201 @@
+// marquardt_fit: Levenberg–Marquardt fits of the surface displacement against the force with
+// cross-validated orders (002 §2.4, §3), and their real-time playback.
+//   fit   datasets -> "marquardt_fit" artifact (model, chosen orders, errors, timing)
+//   cv    datasets -> "marquardt_cv" artifact (CV score of every candidate order, both surface models)
+//   play  fit artifact + forces -> "surface_playback" artifact
+#include <iostream>
+
+#include "common/app.hpp"
+#include "softsim/fit/assessment.hpp"
+#include "softsim/fit/dataset_json.hpp"
+#include "softsim/fit/fit_driver.hpp"
+#include "softsim/fit/model_json.hpp"
+#include "softsim/fit/playback.hpp"
+#include "softsim/fit/report_json.hpp"
+#include "softsim/fit/settings_json.hpp"
+#include "softsim/fit/static_series.hpp"
+
+using namespace softsim;
+
+namespace {
+
+constexpr const char* kAxis[3] = {"x", "y", "z"};
+
+Eigen::Vector3d read_force(const io::JsonReader& node) {
+  if (!node.raw().is_array() || node.raw().size() != 3) node.fail("a force [fx, fy, fz] in N");
+  return Eigen::Vector3d(node[0].as_double(), node[1].as_double(), node[2].as_double());
+}
+
+void require_same_nodes(const fit::Dataset& ds, const fit::FitModel& model) {
+  if (ds.nodes.rows() != model.nodes.rows() || (ds.nodes - model.nodes).cwiseAbs().maxCoeff() > 1e-12 ||
+      ds.loaded_node != model.loaded_node)
+    throw InputError(ds.source + ": /payload/top_nodes: expected the surface nodes and loaded node of the fitted datasets");
+}
+
+void fit_or_cv(app::AppContext& ctx) {
+  const io::JsonReader& cfg = ctx.config();
+  const bool cv_mode = ctx.mode == "cv";
+  const fit::FitSettings settings = fit::fit_settings_from_json(cfg);
+  // A dataset is an rpim_dataset path or a series of static solutions (static_series.hpp).
+  const io::JsonReader ds_node = cfg.at("datasets");
+  std::array<std::string, 3> paths;
+  std::array<std::optional<fit::StaticSeries>, 3> series;
+  for (int d = 0; d < 3; ++d) {
+    const auto entry = ds_node.optional(kAxis[d]);
+    if (!entry) continue;
+    if (entry->raw().is_object()) {
+      series[d] = fit::static_series_from_json(*entry);
+      paths[d] = series[d]->mesh;
+    } else {
+      paths[d] = entry->as_string();
+    }
+  }
+  ds_node.reject_unknown();
+  std::vector<std::string> validation;
+  std::vector<double> check_forces = {0.2, 0.4, 0.6, 0.8, 1.0};  // 002 §5.1.1
+  int examples = 3;
+  long evaluations = 100000;
+  if (!cv_mode) {
+    if (const auto v = cfg.optional("validation"))
+      for (std::size_t i = 0; i < v->size(); ++i) validation.push_back((*v)[i].as_string());
+    if (cfg.has("check_forces")) check_forces = cfg.get_doubles("check_forces");
+    const std::int64_t ex = cfg.get_int("examples", examples);
+    cfg.require(ex >= 0 && ex <= 1000, "examples", "0 to 1000 stored example cases");
+    examples = static_cast<int>(ex);
+    if (const auto t = cfg.optional("timing")) {
+      evaluations = t->get_int("evaluations", evaluations);
+      t->require(evaluations >= 0 && evaluations <= 100000000, "evaluations", "0 to 1e8 timed evaluations");
+      t->reject_unknown();
+    }
+  }
+  cfg.reject_unknown();
+
+  std::array<fit::Dataset, 3> data;
+  std::array<const fit::Dataset*, 3> use = {nullptr, nullptr, nullptr};
+  nlohmann::json sources = nlohmann::json::object(), dataset_timing = nlohmann::json::object();
+  for (int d = 0; d < 3; ++d) {
+    if (paths[d].empty()) continue;
+    if (series[d]) {
+      ctx.input(series[d]->mesh);
+      for (const auto& c : series[d]->cases) ctx.input(c.result);
+      data[d] = fit::read_static_series(*series[d]);
+    } else {
+      data[d] = fit::read_dataset(ctx.input(paths[d]));
+    }
+    use[d] = &data[d];
+    sources[kAxis[d]] = {{"path", paths[d]}, {"kind", data[d].kind}, {"cases", data[d].case_count()}};
+    dataset_timing[kAxis[d]] = data[d].timing;
+  }
+  ctx.provenance.seed = settings.options.seed;
+  const fit::FitResult result = fit::fit_surface_model(use, settings, cv_mode);
+  nlohmann::json payload = {{"settings", fit::fit_settings_to_json(settings)},
+                            {"datasets", sources},
+                            {"selection", fit::selection_to_json(result)}};
+  if (cv_mode) {
+    nlohmann::json tables = nlohmann::json::array();
+    for (const auto& t : result.cv_tables) tables.push_back(fit::cv_table_to_json(t));
+    payload["tables"] = tables;
+    ctx.write("marquardt_cv", 1, std::move(payload));
+    std::cerr << "marquardt_fit cv: " << result.cv_tables.size() << " tables\n";
+    return;
+  }
+
+  std::optional<fit::Superposition> exact;
+  nlohmann::json training = nlohmann::json::object(), checks = nullptr;
+  for (int d = 0; d < 3; ++d) {
+    if (use[d] == nullptr) continue;
+    training[kAxis[d]] = fit::assess_dataset(result.model, data[d], 0);
+    if (!exact && data[d].unit_solutions) exact.emplace(*data[d].unit_solutions);
+  }
+  nlohmann::json validated = nlohmann::json::array();
+  for (const auto& path : validation) {
+    const fit::Dataset v = fit::read_dataset(ctx.input(path));
+    require_same_nodes(v, result.model);
+    validated.push_back(fit::assess_dataset(result.model, v, examples));
+    if (!exact && v.unit_solutions) exact.emplace(*v.unit_solutions);
+  }
+  if (exact) checks = fit::check_against_superposition(result.model, *exact, check_forces);
+  payload["model"] = fit::model_to_json(result.model);
+  payload["paper_units"] = fit::paper_units_to_json(result.model);
+  payload["training"] = training;
+  payload["validation"] = validated;
+  payload["check"] = checks;
+  payload["timing"] = evaluations > 0 ? fit::measure_evaluation_time(result.model, exact, evaluations) : nlohmann::json(nullptr);
+  payload["dataset_timing"] = dataset_timing;
+  ctx.write(fit::kFitSchema, fit::kFitSchemaVersion, std::move(payload));
+  std::cerr << "marquardt_fit: fitted " << sources.size() << " load directions\n";
+}
+
+void play(app::AppContext& ctx) {
+  const io::JsonReader& cfg = ctx.config();
+  const std::string fit_path = cfg.get_string("fit");
+  const io::JsonReader forces_node = cfg.at("forces");
+  std::vector<Eigen::Vector3d> forces;
+  for (std::size_t i = 0; i < forces_node.size(); ++i) forces.push_back(read_force(forces_node[i]));
+  if (forces.empty()) forces_node.fail("at least one force");
+  const std::string reference_path = cfg.get_string("reference", "");
+  cfg.reject_unknown();
+
+  const fit::FitModel model = fit::read_fit_model(ctx.input(fit_path));
+  std::optional<fit::Superposition> exact;
+  if (!reference_path.empty()) {
+    const fit::Dataset ref = fit::read_dataset(ctx.input(reference_path));
+    require_same_nodes(ref, model);
+    if (!ref.unit_solutions) throw InputError(reference_path + ": /payload/unit_solutions: expected unit solutions for the reference");
+    exact.emplace(*ref.unit_solutions);
+  }
+  const fit::SurfacePlayer player(model);
+  const int n = player.node_count();
+  Eigen::VectorXd u(3 * n), s(3 * n);
+  nlohmann::json cases = nlohmann::json::array();
+  for (const Eigen::Vector3d& f : forces) {
+    player.play(f, u.data());
+    Eigen::MatrixXd rows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(u.data(), n, 3);
+    const Eigen::Vector3d delta = player.loaded_displacement(f);
+    nlohmann::json c = {{"force", {f[0], f[1], f[2]}},
+                        {"top_displacement", fit::rows_to_json(rows)},
+                        {"loaded_node_displacement", {rows(model.loaded_node, 0), rows(model.loaded_node, 1), rows(model.loaded_node, 2)}},
+                        {"relation1_displacement", {delta[0], delta[1], delta[2]}}};
+    if (exact) {
+      exact->apply(f, s.data());
+      const Eigen::MatrixXd ref = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(s.data(), n, 3);
+      fit::ErrorAccumulator e(n);
+      e.add(u.data(), ref);
+      c["reference_loaded_node_displacement"] = {ref(model.loaded_node, 0), ref(model.loaded_node, 1), ref(model.loaded_node, 2)};
+      c["error_vs_reference"] = fit::errors_to_json(e.result());
+    }
+    cases.push_back(c);
+  }
+  ctx.write("surface_playback", 1,
+            {{"fit", fit_path}, {"loaded_node", model.loaded_node + 1}, {"top_nodes", fit::rows_to_json(model.nodes)}, {"cases", cases}});
+  std::cerr << "marquardt_fit play: " << forces.size() << " forces\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  app::AppInfo info;
+  info.name = "marquardt_fit";
+  info.summary = "Levenberg–Marquardt surface fits with cross-validated orders (002 §3); fit, cv or play back";
+  info.modes = {"fit", "cv", "play"};
+  info.config_help =
+      "  fit, cv: {\"datasets\": {\"x\": \"axis_x.json\", \"y\": ..., \"z\": ...},   rpim_dataset artifacts, forces along each axis,\n"
+      "            or {\"kind\": \"static_series\", \"mesh\": ..., \"loaded_point\": [x, y, z], \"cases\": [{\"result\": ..., \"force\": [..]}]}\n"
+      "            \"basis\": \"legendre\"|\"monomial\", \"input_scaling\": \"unit_interval\"|\"none\",\n"
+      "            \"surface_model\": \"separable\"|\"bivariate\"|\"best\", \"loaded_node_displacement\": \"relation1\"|\"surface\",\n"
+      "            \"cv\": {\"folds\": 5, \"seed\": 1, \"selection\": \"one_se\"|\"min\", \"exact_relative\": 1e-9,\n"
+      "                   \"max_orders\": {\"force\": 4, \"surface\": [8, 8], \"bivariate\": 8, \"parameters\": 3}},\n"
+      "            \"solver\": {\"max_iterations\": 100, \"function_tolerance\": 1e-15, \"gradient_tolerance\": 1e-12,\n"
+      "                       \"parameter_tolerance\": 1e-14, \"initial_damping\": 1e-4, \"max_condition\": 1e12},\n"
+      "            \"orders\": {\"z\": {\"force\": 1, \"components\": {\"x\": {\"surface\": {\"model\": \"separable\", \"orders\": [5, 1]}, \"parameters\": 1}}}},\n"
+      "            fit only: \"validation\": [\"random.json\"], \"check_forces\": [0.2, ..., 1.0] (N), \"examples\": 3,\n"
+      "                      \"timing\": {\"evaluations\": 100000}}\n"
+      "  play:    {\"fit\": \"fit.json\", \"forces\": [[fx, fy, fz], ...] (N), \"reference\": \"dataset.json\" (optional)}\n"
+      "  See cpp/apps/marquardt_fit.md.";
+  return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
+    if (ctx.mode == "play")
+      play(ctx);
+    else
+      fit_or_cv(ctx);
+  });
+}

@@ -1,0 +1,247 @@
+#include "softsim/fit/relations.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "softsim/io/errors.hpp"
+
+namespace softsim::fit {
+
+namespace {
+
+struct Split {
+  std::vector<int> train;
+  std::vector<int> test;
+};
+
+Split split_fold(const std::vector<int>& fold, int f) {
+  Split s;
+  for (int i = 0; i < static_cast<int>(fold.size()); ++i) (fold[i] == f ? s.test : s.train).push_back(i);
+  return s;
+}
+
+void note_condition(CvScore& score, double condition) {
+  if (!(condition <= score.max_condition)) score.max_condition = condition;  // keeps +inf
+}
+
+std::string fold_message(int f, const std::string& message) {
+  return "fold " + std::to_string(f + 1) + ": " + message;
+}
+
+void throw_refused(const std::string& what, FitStatus status, const std::string& message) {
+  throw NumericalError(what + ": " + to_string(status) + ": " + message);
+}
+
+}  // namespace
+
+AffineScale input_scale(const std::vector<double>& values, bool scale_inputs) {
+  if (!scale_inputs || values.empty()) return AffineScale{};
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  return AffineScale::from_range(*lo, *hi);
+}
+
+double exact_floor_mse(const Eigen::MatrixXd& values, double exact_relative) {
+  if (values.size() == 0) return 0.0;
+  const double rms = std::sqrt(values.squaredNorm() / static_cast<double>(values.size()));
+  return (exact_relative * rms) * (exact_relative * rms);
+}
+
+// ---------------- relation 1 ----------------
+
+Eigen::MatrixXd polynomial_design(Basis basis, const AffineScale& scale, const std::vector<double>& x,
+                                  int order) {
+  if (order > kMaxOrder) throw std::invalid_argument("polynomial_design: order above kMaxOrder");
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(x.size()), order + 1);
+  double phi[kMaxOrder + 1];
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    evaluate_basis(basis, order, scale.to_unit(x[i]), phi);
+    for (int m = 0; m <= order; ++m) A(static_cast<Eigen::Index>(i), m) = phi[m];
+  }
+  return A;
+}
+
+LinearFit fit_polynomial(const std::vector<double>& x, const std::vector<double>& y, int order,
+                         const AffineScale& scale, const FitOptions& options) {
+  const Eigen::Map<const Eigen::VectorXd> yv(y.data(), static_cast<Eigen::Index>(y.size()));
+  return fit_linear(polynomial_design(options.basis, scale, x, order), yv, options.lm);
+}
+
+CvScore cv_polynomial(const std::vector<double>& x, const std::vector<double>& y, int order,
+                      const AffineScale& scale, const FitOptions& options) {
+  CvScore score;
+  score.parameters = order + 1;
+  const int n = static_cast<int>(x.size());
+  if (n < 2) {
+    refuse(score, FitStatus::too_few_samples, "cross-validation needs at least 2 samples, got " + std::to_string(n));
+    return score;
+  }
+  const int k = effective_folds(n, options.folds);
+  const std::vector<int> fold = assign_folds(n, k, options.seed);
+  const Eigen::MatrixXd A = polynomial_design(options.basis, scale, x, order);
+  const Eigen::Map<const Eigen::VectorXd> yv(y.data(), n);
+  FoldErrors errors(k);
+  for (int f = 0; f < k; ++f) {
+    const Split s = split_fold(fold, f);
+    const LinearDesign design(A(s.train, Eigen::all), options.lm);
+    note_condition(score, design.condition());
+    if (design.status() != FitStatus::ok) {
+      refuse(score, design.status(), fold_message(f, design.message()));
+      return score;
+    }
+    const LinearFit fit = design.solve(yv(s.train));
+    if (!fit.ok()) {
+      refuse(score, fit.status, fold_message(f, fit.message));
+      return score;
+    }
+    for (int i : s.test) {
+      const double e = A.row(i).dot(fit.coefficients) - yv[i];
+      errors.add(f, e * e);
+    }
+  }
+  errors.finish(score);
+  return score;
+}
+
+// ---------------- relation 2 ----------------
+
+Eigen::MatrixXd fit_surfaces(const SurfaceTerms& terms, const SurfaceFrame& frame,
+                             const Eigen::MatrixXd& xy, const Eigen::MatrixXd& values,
+                             const FitOptions& options, const std::string& what, FitSummary* summary) {
+  const Eigen::MatrixXd A = surface_design(terms, frame, xy);
+  const LinearDesign design(A, options.lm);
+  if (design.status() != FitStatus::ok) throw_refused(what, design.status(), design.message());
+  Eigen::MatrixXd coefficients(terms.size(), values.cols());
+  int max_iterations = 0;
+  std::string termination;
+  for (Eigen::Index c = 0; c < values.cols(); ++c) {
+    const LinearFit fit = design.solve(values.col(c));
+    require_ok(fit, what + ", case " + std::to_string(c + 1));
+    coefficients.col(c) = fit.coefficients;
+    max_iterations = std::max(max_iterations, fit.iterations);
+    termination = fit.termination;
+  }
+  if (summary != nullptr) {
+    summary->condition = design.condition();
+    summary->samples = design.samples();
+    summary->parameters = design.parameters();
+    summary->max_iterations = max_iterations;
+    summary->termination = termination;
+    const double n = static_cast<double>(values.size());
+    summary->rmse = n > 0 ? std::sqrt((A * coefficients - values).squaredNorm() / n) : 0.0;
+  }
+  return coefficients;
+}
+
+CvScore cv_surface(const SurfaceTerms& terms, const SurfaceFrame& frame, const Eigen::MatrixXd& xy,
+                   const Eigen::MatrixXd& values, const FitOptions& options) {
+  CvScore score;
+  score.parameters = terms.size();
+  const int n = static_cast<int>(xy.rows());
+  if (n < 2) {
+    refuse(score, FitStatus::too_few_samples, "cross-validation needs at least 2 nodes");
+    return score;
+  }
+  const int k = effective_folds(n, options.folds);
+  const std::vector<int> fold = assign_folds(n, k, options.seed);
+  const Eigen::MatrixXd A = surface_design(terms, frame, xy);
+  FoldErrors errors(k);
+  for (int f = 0; f < k; ++f) {
+    const Split s = split_fold(fold, f);
+    const LinearDesign design(A(s.train, Eigen::all), options.lm);
+    note_condition(score, design.condition());
+    if (design.status() != FitStatus::ok) {
+      refuse(score, design.status(), fold_message(f, design.message()));
+      return score;
+    }
+    const Eigen::MatrixXd A_test = A(s.test, Eigen::all);
+    for (Eigen::Index c = 0; c < values.cols(); ++c) {
+      const Eigen::VectorXd column = values.col(c);
+      const LinearFit fit = design.solve(column(s.train));
+      if (!fit.ok()) {
+        refuse(score, fit.status, fold_message(f, fit.message));
+        return score;
+      }
+      const Eigen::VectorXd e = A_test * fit.coefficients - column(s.test);
+      for (Eigen::Index i = 0; i < e.size(); ++i) errors.add(f, e[i] * e[i]);
+    }
+  }
+  errors.finish(score);
+  return score;
+}
+
+// ---------------- relation 3 ----------------
+
+Eigen::MatrixXd fit_parameter_relation(const std::vector<double>& delta, const AffineScale& delta_scale,
+                                       const Eigen::MatrixXd& coefficients, int order,
+                                       const FitOptions& options, const std::string& what,
+                                       FitSummary* summary) {
+  const Eigen::MatrixXd Phi = polynomial_design(options.basis, delta_scale, delta, order);
+  const LinearDesign design(Phi, options.lm);
+  if (design.status() != FitStatus::ok) throw_refused(what, design.status(), design.message());
+  Eigen::MatrixXd beta(coefficients.rows(), order + 1);
+  int max_iterations = 0;
+  std::string termination;
+  for (Eigen::Index k = 0; k < coefficients.rows(); ++k) {
+    const LinearFit fit = design.solve(coefficients.row(k).transpose());
+    require_ok(fit, what + ", coefficient p" + std::to_string(k + 1));
+    beta.row(k) = fit.coefficients.transpose();
+    max_iterations = std::max(max_iterations, fit.iterations);
+    termination = fit.termination;
+  }
+  if (summary != nullptr) {
+    summary->condition = design.condition();
+    summary->samples = design.samples();
+    summary->parameters = design.parameters();
+    summary->max_iterations = max_iterations;
+    summary->termination = termination;
+    const double n = static_cast<double>(coefficients.size());
+    summary->rmse = n > 0 ? std::sqrt((beta * Phi.transpose() - coefficients).squaredNorm() / n) : 0.0;
+  }
+  return beta;
+}
+
+CvScore cv_parameter_relation(const std::vector<double>& delta, const AffineScale& delta_scale,
+                              const Eigen::MatrixXd& coefficients, const Eigen::MatrixXd& surface_design,
+                              int order, const FitOptions& options) {
+  CvScore score;
+  score.parameters = order + 1;
+  const int n = static_cast<int>(delta.size());
+  if (n < 2) {
+    refuse(score, FitStatus::too_few_samples, "cross-validation needs at least 2 load cases");
+    return score;
+  }
+  const int k = effective_folds(n, options.folds);
+  const std::vector<int> fold = assign_folds(n, k, options.seed);
+  const Eigen::MatrixXd Phi = polynomial_design(options.basis, delta_scale, delta, order);
+  FoldErrors errors(k);
+  Eigen::MatrixXd beta(coefficients.rows(), order + 1);
+  for (int f = 0; f < k; ++f) {
+    const Split s = split_fold(fold, f);
+    const LinearDesign design(Phi(s.train, Eigen::all), options.lm);
+    note_condition(score, design.condition());
+    if (design.status() != FitStatus::ok) {
+      refuse(score, design.status(), fold_message(f, design.message()));
+      return score;
+    }
+    for (Eigen::Index t = 0; t < coefficients.rows(); ++t) {
+      const Eigen::VectorXd row = coefficients.row(t).transpose();
+      const LinearFit fit = design.solve(row(s.train));
+      if (!fit.ok()) {
+        refuse(score, fit.status, fold_message(f, fit.message));
+        return score;
+      }
+      beta.row(t) = fit.coefficients.transpose();
+    }
+    for (int i : s.test) {
+      // Against the case's own fitted surface: the misfit of relation 2, the same for every
+      // order of relation 3, would otherwise swamp the differences between those orders.
+      const Eigen::VectorXd dp = beta * Phi.row(i).transpose() - coefficients.col(i);
+      const Eigen::VectorXd e = surface_design * dp;
+      for (Eigen::Index r = 0; r < e.size(); ++r) errors.add(f, e[r] * e[r]);
+    }
+  }
+  errors.finish(score);
+  return score;
+}
+
+}  // namespace softsim::fit

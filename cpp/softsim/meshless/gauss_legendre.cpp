@@ -1,0 +1,50 @@
+#include "softsim/meshless/gauss_legendre.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace softsim::meshless {
+
+GaussRule gauss_legendre(int n) {
+  if (n < 1 || n > 32) throw std::invalid_argument("gauss_legendre: order must lie in [1, 32]");
+  GaussRule rule;
+  rule.points.resize(n);
+  rule.weights.resize(n);
+  const double pi = std::acos(-1.0);
+  // Newton iteration on P_n from the Chebyshev-like initial guess; roots are symmetric.
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5));
+    double dp = 0;
+    for (int iter = 0; iter < 100; ++iter) {
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double pk = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = pk;
+      }
+      const double pn = n == 1 ? x : p1;
+      const double pn1 = n == 1 ? 1.0 : p0;
+      dp = n * (x * pn - pn1) / (x * x - 1);
+      const double dx = pn / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    // Recompute the derivative at the converged root for the weight.
+    double p0 = 1, p1 = x;
+    for (int k = 2; k <= n; ++k) {
+      const double pk = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+      p0 = p1;
+      p1 = pk;
+    }
+    dp = n == 1 ? 1.0 : n * (x * p1 - p0) / (x * x - 1);
+    const double w = 2.0 / ((1 - x * x) * dp * dp);
+    rule.points[i] = -x;
+    rule.points[n - 1 - i] = x;
+    rule.weights[i] = w;
+    rule.weights[n - 1 - i] = w;
+  }
+  if (n % 2 == 1) rule.points[n / 2] = 0.0;
+  return rule;
+}
+
+}  // namespace softsim::meshless
