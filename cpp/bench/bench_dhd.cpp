@@ -1,0 +1,116 @@
+// Speed of the DHD-FEA explicit engine on the paper's mesh (000 §3.2, Table 1: 3564 nodes,
+// 14450 tetrahedra = mesh::make_cuboid with cells {17, 17, 10}), double precision:
+//   BM_Steps      explicit steps per second for all-TLED (both neo-Hookean forms), all-linear,
+//                 all-corotational and a linear share r, on 1 and 2 threads;
+//   BM_Kernel     the element kernel alone: elements per second of each kind (1e9 / rate = ns per
+//                 element).
+// Scene: bottom fixed, the top-centre node pushed down (the paper's error scene, Fig. 10).
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "softsim/dynamics/explicit_solver.hpp"
+#include "softsim/dynamics/lumped_mass.hpp"
+#include "softsim/dynamics/stable_step.hpp"
+#include "softsim/fem/element_set.hpp"
+#include "softsim/hybrid/dhd_run.hpp"
+#include "softsim/hybrid/partition.hpp"
+#include "softsim/mesh/cuboid.hpp"
+
+using namespace softsim;
+using fem::ElementKind;
+
+namespace {
+
+constexpr int kStepsPerIteration = 200;
+
+const mesh::TetMesh& paper_mesh() {
+  static const mesh::TetMesh m = [] {
+    mesh::CuboidSpec s;
+    s.cells = {17, 17, 10};
+    s.size = Eigen::Vector3d(0.17, 0.17, 0.10);
+    return mesh::make_cuboid(s);
+  }();
+  return m;
+}
+
+const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};  // 000 §3.1
+
+// Partition codes: 0 all TLED (paper form), 1 all TLED (decoupled form), 2 all linear,
+// 3 all corotational, 10..19 linear share r = (code − 10) / 10 with TLED elsewhere.
+std::vector<ElementKind> partition(int code) {
+  const auto& m = paper_mesh();
+  hybrid::PartitionSpec spec;
+  if (code <= 1) spec.uniform_element = ElementKind::tled;
+  if (code == 2) spec.uniform_element = ElementKind::linear;
+  if (code == 3) spec.uniform_element = ElementKind::corotational;
+  if (code >= 10) {
+    spec.kind = hybrid::PartitionKind::linear_fraction;
+    spec.linear_fraction = (code - 10) / 10.0;
+  }
+  return hybrid::make_partition(m, spec);
+}
+
+material::NeoHookeanForm form(int code) {
+  return code == 1 ? material::NeoHookeanForm::decoupled : material::NeoHookeanForm::paper;
+}
+
+void BM_Steps(benchmark::State& state) {
+  const int code = static_cast<int>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  const auto& m = paper_mesh();
+  const fem::Material mat = fem::Material::make(kPaper, form(code));
+  fem::ElementSet elements(m, partition(code), mat);
+  dynamics::ExplicitOptions opt;
+  opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
+  opt.steps = kStepsPerIteration;
+  opt.threads = threads;
+  opt.energy_interval = kStepsPerIteration;
+  const dynamics::Scene scene = hybrid::default_bench_scene(m, 1000 * opt.dt);
+  dynamics::ExplicitSolver solver(elements, dynamics::lumped_mass(m, kPaper.density), scene, opt);
+  dynamics::ExplicitTiming last;
+  for (auto _ : state) {
+    const auto r = solver.run();
+    benchmark::DoNotOptimize(r.displacement.data());
+    last = r.timing;
+  }
+  state.counters["steps_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kStepsPerIteration, benchmark::Counter::kIsRate);
+  for (int k = 0; k < fem::kNumElementKinds; ++k)
+    if (last.element_counts[k] > 0)
+      state.counters[std::string("ns_per_") + fem::kind_name(static_cast<ElementKind>(k))] =
+          1e9 * last.kernel_seconds[k] / (double(last.element_counts[k]) * kStepsPerIteration);
+  state.counters["ns_per_node"] = 1e9 * last.node_seconds / (double(m.num_nodes()) * kStepsPerIteration);
+}
+
+void steps_args(benchmark::internal::Benchmark* b) {
+  for (int threads : {1, 2})
+    for (int code : {0, 1, 2, 3, 15}) b->Args({code, threads});
+  for (int code : {11, 12, 13, 14}) b->Args({code, 1});  // Table 1's shares of linear elements
+}
+BENCHMARK(BM_Steps)->Apply(steps_args)->ArgNames({"partition", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// One element phase over all elements of one kind, on a deformed state (a 20 % shear with a
+// 30° rotation, so the corotational polar decomposition does real work).
+void BM_Kernel(benchmark::State& state) {
+  const int code = static_cast<int>(state.range(0));
+  const auto& m = paper_mesh();
+  fem::ElementSet elements(m, partition(code), fem::Material::make(kPaper, form(code)));
+  Eigen::Matrix3d F;
+  F << 1.0, 0.2, 0.0, 0.0, 0.95, 0.0, 0.0, 0.0, 1.05;
+  F = Eigen::AngleAxisd(0.5, Eigen::Vector3d(0, 0, 1)).toRotationMatrix() * F;
+  std::vector<double> u(3 * m.nodes.size());
+  for (int i = 0; i < m.num_nodes(); ++i)
+    for (int k = 0; k < 3; ++k) u[3 * i + k] = ((F - Eigen::Matrix3d::Identity()) * m.nodes[i])[k];
+  for (auto _ : state) {
+    fem::KernelStats st;
+    elements.compute(u.data(), 0, elements.padded_size(), st);
+    benchmark::DoNotOptimize(st.min_j);
+  }
+  // Elements per second; nanoseconds per element = 1e9 / elements_per_s.
+  state.counters["elements_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * m.num_tets(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

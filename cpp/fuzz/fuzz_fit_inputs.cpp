@@ -1,0 +1,43 @@
+// libFuzzer target: the marquardt_fit readers — fit settings (a config), an rpim_dataset
+// payload and a fitted model — each tried on the same JSON document. Any input must give a
+// value or an InputError: never a crash, undefined behaviour or another exception type.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "softsim/fit/dataset_json.hpp"
+#include "softsim/fit/model_json.hpp"
+#include "softsim/fit/settings_json.hpp"
+#include "softsim/io/errors.hpp"
+#include "softsim/io/json_reader.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception&) {
+    return 0;
+  }
+  using softsim::io::JsonReader;
+  namespace fit = softsim::fit;
+  try {
+    const JsonReader cfg(doc, "fuzz.json");
+    if (doc.is_object()) {
+      cfg.accept("datasets");
+      fit::fit_settings_to_json(fit::fit_settings_from_json(cfg));
+    }
+  } catch (const softsim::InputError&) {
+  }
+  try {
+    fit::dataset_from_json(JsonReader(doc, "fuzz.json", "/payload"), "fuzz.json");
+  } catch (const softsim::InputError&) {
+  }
+  try {
+    fit::model_to_json(fit::model_from_json(JsonReader(doc, "fuzz.json", "/payload/model")));
+  } catch (const softsim::InputError&) {
+  }
+  return 0;
+}

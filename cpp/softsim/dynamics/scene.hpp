@@ -1,0 +1,68 @@
+#pragma once
+// What acts on the body: displacement constraints on node sets (fixed or prescribed with a
+// ramp, per component), nodal forces, gravity, and a probe coupled to one node by a linear
+// spring (000 eq. 26's R_v, plus the haptic probe of paper 001). Node lists are already
+// resolved (see node_selection.hpp); everything is SI.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace softsim::dynamics {
+
+// A load factor that goes from 0 to 1 over `duration` seconds and stays at 1. A zero duration
+// means the full value from the start (t ≤ 0 included).
+struct Ramp {
+  enum class Shape { linear, smooth };  // smooth: 3s² − 2s³ (zero rate at both ends)
+  double duration = 0;
+  Shape shape = Shape::linear;
+  double at(double t) const;
+};
+
+struct DisplacementConstraint {
+  std::string name;  // for the reaction report ("bottom", "fixed[0]", ...)
+  std::vector<int> nodes;
+  std::array<bool, 3> components = {true, true, true};
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // value at the end of the ramp (m)
+  Ramp ramp;
+};
+
+struct NodalLoad {
+  std::string name;
+  std::vector<int> nodes;
+  Eigen::Vector3d force_per_node = Eigen::Vector3d::Zero();  // N
+  Ramp ramp;
+};
+
+// A tool tip at X_node + displacement × ramp(t), pulling the node through a spring:
+// force on the node = stiffness × (tip − x_node).
+struct ProbeSpring {
+  int node = -1;
+  double stiffness = 0;                                    // N/m
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // of the tip, relative to X_node (m)
+  Ramp ramp;
+};
+
+struct Scene {
+  std::vector<DisplacementConstraint> constraints;  // later entries override earlier ones per component
+  std::vector<NodalLoad> loads;
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // m/s², constant in time
+  bool has_probe = false;
+  ProbeSpring probe;
+};
+
+// One constrained degree of freedom: the last constraint naming (node, component) wins.
+struct ConstrainedDof {
+  int node = 0;
+  int component = 0;
+  int constraint = 0;  // index into Scene::constraints
+  double value = 0;    // final prescribed displacement (m)
+};
+// Sorted by (node, component). Throws InputError for a node index out of range.
+std::vector<ConstrainedDof> resolve_constraints(const Scene& scene, int num_nodes);
+
+// Per-dof flag: true where a constraint acts.
+std::vector<char> constrained_mask(const std::vector<ConstrainedDof>& dofs, int num_nodes);
+
+}  // namespace softsim::dynamics

@@ -1,0 +1,44 @@
+#include "softsim/fem/constitutive.hpp"
+
+#include "softsim/material/small_strain.hpp"
+
+namespace softsim::fem {
+
+Material Material::make(const material::ElasticParameters& elastic, material::NeoHookeanForm form) {
+  material::validate(elastic);
+  Material m;
+  m.elastic = elastic;
+  m.lame = material::lame_parameters(elastic);
+  m.neo_hookean = material::NeoHookean::from(form, elastic);
+  return m;
+}
+
+Eigen::Matrix3d first_piola(const Material& m, ElementKind kind, const Eigen::Matrix3d& F) {
+  switch (kind) {
+    case ElementKind::linear: return material::linear_stress(m.lame, F);
+    case ElementKind::tled: return material::first_piola(m.neo_hookean, F);
+    case ElementKind::corotational: return material::corotated_first_piola(m.lame, F);
+  }
+  return Eigen::Matrix3d::Zero();
+}
+
+double energy_density(const Material& m, ElementKind kind, const Eigen::Matrix3d& F) {
+  switch (kind) {
+    case ElementKind::linear: return material::linear_energy_density(m.lame, F);
+    case ElementKind::tled: return material::strain_energy_density(m.neo_hookean, F);
+    case ElementKind::corotational: return material::corotated_energy_density(m.lame, F);
+  }
+  return 0.0;
+}
+
+Eigen::Matrix3d first_piola_increment(const Material& m, ElementKind kind, const Eigen::Matrix3d& F,
+                                      const Eigen::Matrix3d& dF) {
+  switch (kind) {
+    case ElementKind::linear: return material::linear_stress_increment(m.lame, dF);
+    case ElementKind::tled: return material::first_piola_increment(m.neo_hookean, F, dF);
+    case ElementKind::corotational: return material::corotated_first_piola_increment(m.lame, F, dF);
+  }
+  return Eigen::Matrix3d::Zero();
+}
+
+}  // namespace softsim::fem

@@ -1,0 +1,105 @@
+#pragma once
+// The explicit engine's element data and kernels (000 §2.2.2–2.2.3), built for speed:
+//   * elements are regrouped by kind (linear, tled, corotational), each group padded to a
+//     multiple of kBlock with inert elements, and stored as structure-of-arrays (node offsets,
+//     the nine shape gradients of corners 1–3, the reference volume);
+//   * the element phase writes each element's 12 corner forces into a per-element buffer
+//     (component-major, so the vectorised kernels store contiguously);
+//   * the node phase sums, for each node, its incident corner forces over a precomputed
+//     node → (element, corner) list in a fixed order (000 eq. 23).
+// Every element and every node is computed the same way whatever the split into ranges, so
+// results are bit-identical for any thread count: no atomics, no racy scatter, and range
+// boundaries fall on block boundaries so no element ever goes through a loop remainder.
+#include <array>
+#include <vector>
+
+#include "softsim/fem/aligned.hpp"
+#include "softsim/fem/constitutive.hpp"
+#include "softsim/fem/element_kind.hpp"
+#include "softsim/fem/tet_geometry.hpp"
+#include "softsim/mesh/tet_mesh.hpp"
+
+namespace softsim::fem {
+
+inline constexpr int kBlock = 8;
+
+struct KernelStats {
+  double min_j = 1e300;  // smallest volume ratio J = det F seen (tled, corotational)
+  double max_j = -1e300;
+};
+
+class ElementSet {
+ public:
+  struct Group {
+    ElementKind kind;
+    int begin = 0;  // internal (padded) indices
+    int end = 0;
+    int count = 0;  // real elements (the rest is padding)
+  };
+
+  ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material);
+
+  int num_nodes() const { return num_nodes_; }
+  int num_elements() const { return static_cast<int>(kinds_.size()); }
+  int padded_size() const { return stride_; }
+  const std::vector<ElementKind>& kinds() const { return kinds_; }
+  const std::vector<Group>& groups() const { return groups_; }
+  int count(ElementKind kind) const;
+  const Material& material() const { return material_; }
+  // Original element index of internal slot i, or −1 for padding.
+  int original(int internal) const { return original_[internal]; }
+
+  // Element phase over internal slots [begin, end) (block-aligned, see balanced_ranges):
+  // corner forces into the buffer. If `seconds` is given, the time spent per kind is added to
+  // seconds[kind]. J of tled and corotational elements is tracked in `stats`.
+  void compute(const double* u, int begin, int end, KernelStats& stats, double* seconds = nullptr);
+
+  // Node phase: the internal force on `node` (000 eq. 23), summed in a fixed order.
+  void gather(int node, double f[3]) const {
+    double fx = 0, fy = 0, fz = 0;
+    const double* b = buffer_.data();
+    const int s = stride_;
+    for (int p = incidence_begin_[node], e = incidence_begin_[node + 1]; p < e; ++p) {
+      const int o = incidence_[p];
+      fx += b[o];
+      fy += b[o + s];
+      fz += b[o + 2 * s];
+    }
+    f[0] = fx;
+    f[1] = fy;
+    f[2] = fz;
+  }
+
+  // Splits [0, padded_size) into `parts` block-aligned ranges of about equal estimated cost.
+  std::vector<int> balanced_ranges(int parts) const;
+
+  // Reference shape of internal slot i (gradients and volume as stored).
+  TetShape shape(int internal) const;
+  // Corner displacements of internal slot i.
+  Corners corners(int internal, const double* u) const;
+  // Strain energy ⁰V W of each internal slot in [begin, end) into energy[internal] (padding: 0),
+  // and the smallest det F in the range with its original element index.
+  void energies(const double* u, int begin, int end, double* energy, double& min_j, int& min_j_element) const;
+
+  // Relative cost of one element of each kind (for balancing threads), tled = 1.
+  static double relative_cost(ElementKind kind);
+
+ private:
+  void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats);
+
+  int num_nodes_ = 0;
+  int stride_ = 0;  // padded element count: component c of slot i lives at buffer[c * stride + i]
+  Material material_;
+  std::vector<ElementKind> kinds_;  // per original element
+  std::vector<int> original_;       // internal slot -> original element (−1: padding)
+  std::vector<Group> groups_;
+  std::array<AlignedVector<int>, 4> node_offset_;  // 3 × node index of each corner
+  std::array<AlignedVector<double>, 9> grad_;      // ∇N of corners 1..3 (x, y, z each)
+  AlignedVector<double> volume_;
+  AlignedVector<double> buffer_;   // 12 × stride corner forces
+  AlignedVector<double> scratch_;  // per slot: what a kernel's fix-up pass decides on (J, polar convergence)
+  std::vector<int> incidence_begin_;
+  std::vector<int> incidence_;  // buffer offset of the x component of each incident corner
+};
+
+}  // namespace softsim::fem

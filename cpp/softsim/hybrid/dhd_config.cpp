@@ -1,0 +1,350 @@
+#include "softsim/hybrid/dhd_config.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "softsim/dynamics/node_selection.hpp"
+#include "softsim/io/artifact.hpp"
+
+namespace softsim::hybrid {
+
+namespace {
+
+Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key) {
+  const auto v = r.get_doubles(key, 3);
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+// Exactly one of set / nodes / nearest / sphere / box. `name` describes the selection.
+std::vector<int> read_selection(const io::JsonReader& r, const mesh::TetMesh& mesh, std::string& name) {
+  static const std::vector<std::string> kSelectors = {"set", "nodes", "nearest", "sphere", "box"};
+  int count = 0;
+  for (const auto& k : kSelectors) count += r.has(k) ? 1 : 0;
+  if (count != 1) r.fail("exactly one node selector of \"set\", \"nodes\", \"nearest\", \"sphere\", \"box\"");
+  std::vector<int> nodes;
+  if (r.has("set")) {
+    name = r.get_string("set");
+    const auto it = mesh.node_sets.find(name);
+    if (it == mesh.node_sets.end()) {
+      std::string known;
+      for (const auto& [k, v] : mesh.node_sets) known += (known.empty() ? "" : ", ") + k;
+      r.at("set").fail("the name of a node set of the mesh (" + known + ")");
+    }
+    nodes = it->second;
+  } else if (r.has("nodes")) {
+    const io::JsonReader list = r.at("nodes");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const auto v = list[i].as_int();
+      if (v < 0 || v >= mesh.num_nodes()) list[i].fail("a node index in [0, " + std::to_string(mesh.num_nodes() - 1) + "]");
+      nodes.push_back(static_cast<int>(v));
+    }
+    name = "nodes";
+  } else if (r.has("nearest")) {
+    nodes.push_back(dynamics::nearest_node(mesh, read_vec3(r, "nearest")));
+    name = "node " + std::to_string(nodes.front());
+  } else if (r.has("sphere")) {
+    const io::JsonReader s = r.at("sphere");
+    const Eigen::Vector3d c = read_vec3(s, "center");
+    const double radius = s.get_positive("radius");
+    s.reject_unknown();
+    nodes = dynamics::nodes_in_sphere(mesh, c, radius);
+    name = "sphere";
+  } else {
+    const io::JsonReader b = r.at("box");
+    const Eigen::Vector3d lo = read_vec3(b, "min"), hi = read_vec3(b, "max");
+    b.reject_unknown();
+    nodes = dynamics::nodes_in_box(mesh, lo, hi);
+    name = "box";
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  if (nodes.empty()) r.fail("a node selection that matches at least one node");
+  return nodes;
+}
+
+std::array<bool, 3> read_components(const io::JsonReader& r) {
+  std::array<bool, 3> c = {true, true, true};
+  if (!r.has("components")) return c;
+  const std::string s = r.get_string("components");
+  c = {false, false, false};
+  bool ok = !s.empty();
+  for (char ch : s) {
+    const int k = ch == 'x' ? 0 : ch == 'y' ? 1 : ch == 'z' ? 2 : -1;
+    if (k < 0 || c[k]) ok = false;
+    else c[k] = true;
+  }
+  if (!ok) r.at("components").fail("a non-empty subset of \"xyz\" without repeats");
+  return c;
+}
+
+dynamics::Ramp read_ramp(const io::JsonReader& r) {
+  dynamics::Ramp ramp;
+  ramp.duration = r.get_double("ramp_time", 0.0);
+  r.require(ramp.duration >= 0, "ramp_time", "a non-negative time in seconds");
+  ramp.shape = r.get_choice("ramp", {"linear", "smooth"}, "linear") == "smooth" ? dynamics::Ramp::Shape::smooth
+                                                                               : dynamics::Ramp::Shape::linear;
+  return ramp;
+}
+
+void read_material(const io::JsonReader& cfg, DhdConfig& c) {
+  material::ElasticParameters p;
+  material::NeoHookeanForm form = material::NeoHookeanForm::paper;
+  if (auto m = cfg.optional("material")) {
+    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "linear"}, "neo_hookean_paper");
+    p.youngs_modulus = m->get_positive("E", p.youngs_modulus);
+    p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
+    m->require(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5, "nu", "a Poisson's ratio in (-1, 0.5)");
+    p.density = m->get_positive("density", p.density);
+    m->reject_unknown();
+  }
+  c.linear_material = c.model == "linear";
+  if (c.model == "neo_hookean_decoupled") form = material::NeoHookeanForm::decoupled;
+  c.material = fem::Material::make(p, form);
+}
+
+fem::ElementKind read_kind(const io::JsonReader& r, const std::string& key, const std::vector<std::string>& choices,
+                           const std::string& fallback) {
+  return *fem::parse_kind(r.get_choice(key, choices, fallback));
+}
+
+void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
+  PartitionSpec& s = c.partition;
+  const std::string default_element = c.linear_material ? "linear" : "tled";
+  s.uniform_element = *fem::parse_kind(default_element);
+  auto p = cfg.optional("partition");
+  if (!p) return;
+  const std::string kind = p->get_choice("kind", {"uniform", "layers", "linear_fraction", "tags", "sphere", "strain"},
+                                         p->has("linear_fraction") ? "linear_fraction" : "uniform");
+  s.linear_element = read_kind(*p, "linear_element", {"linear", "corotational"}, "linear");
+  if (kind == "uniform") {
+    s.kind = PartitionKind::uniform;
+    s.uniform_element = read_kind(*p, "element", {"tled", "linear", "corotational"}, default_element);
+  } else if (kind == "layers") {
+    s.kind = PartitionKind::layers;
+    s.nonlinear_layers = static_cast<int>(p->get_int("nonlinear_layers"));
+    p->require(s.nonlinear_layers >= 0, "nonlinear_layers", "a non-negative layer count");
+    s.tag = p->get_string("tag", "layer");
+    p->require(mesh.element_tags.count(s.tag) > 0, "tag", "the name of an element tag of the mesh");
+  } else if (kind == "linear_fraction") {
+    s.kind = PartitionKind::linear_fraction;
+    s.linear_fraction = p->get_double("linear_fraction");
+    p->require(s.linear_fraction >= 0 && s.linear_fraction <= 1, "linear_fraction", "a share in [0, 1]");
+    if (p->has("operating_point")) s.operating_point = read_vec3(*p, "operating_point");
+    s.distance = p->get_choice("distance", {"euclidean", "depth"}, "euclidean") == "depth" ? DistanceMetric::depth
+                                                                                          : DistanceMetric::euclidean;
+  } else if (kind == "tags") {
+    s.kind = PartitionKind::tags;
+    s.tag = p->get_string("tag");
+    p->require(mesh.element_tags.count(s.tag) > 0, "tag", "the name of an element tag of the mesh");
+    for (auto v : p->get_ints("nonlinear_values")) s.nonlinear_values.push_back(static_cast<int>(v));
+  } else if (kind == "sphere") {
+    s.kind = PartitionKind::sphere;
+    s.center = read_vec3(*p, "center");
+    s.radius = p->get_positive("radius");
+  } else {
+    s.kind = PartitionKind::strain;
+    c.strain_reference = p->get_string("reference");
+    s.measure = p->get_choice("measure", {"displacement_gradient", "green_lagrange"}, "displacement_gradient") ==
+                        "green_lagrange"
+                    ? StrainMeasure::green_lagrange
+                    : StrainMeasure::displacement_gradient;
+    const bool has_threshold = p->has("threshold"), has_fraction = p->has("linear_fraction");
+    if (has_threshold == has_fraction) p->fail("exactly one of \"threshold\" and \"linear_fraction\"");
+    if (has_threshold) {
+      s.threshold = p->get_double("threshold");
+      p->require(*s.threshold >= 0, "threshold", "a non-negative strain");
+    } else {
+      s.linear_fraction = p->get_double("linear_fraction");
+      p->require(s.linear_fraction >= 0 && s.linear_fraction <= 1, "linear_fraction", "a share in [0, 1]");
+    }
+    const io::Artifact ref = io::Artifact::read(c.strain_reference, "dhd_result", 1);
+    const io::JsonReader disp = ref.payload().at("displacement");
+    if (disp.size() != static_cast<std::size_t>(mesh.num_nodes()))
+      disp.fail("one displacement per mesh node (" + std::to_string(mesh.num_nodes()) + ")");
+    s.reference_displacement.resize(3 * disp.size());
+    for (std::size_t i = 0; i < disp.size(); ++i) {
+      const io::JsonReader d = disp[i];
+      if (d.size() != 3) d.fail("[ux, uy, uz]");
+      for (std::size_t k = 0; k < 3; ++k) s.reference_displacement[3 * i + k] = d[k].as_double();
+    }
+  }
+  p->reject_unknown();
+  const bool wants_tled = s.kind != PartitionKind::uniform || s.uniform_element == fem::ElementKind::tled;
+  if (c.linear_material && wants_tled)
+    p->fail("a partition without TLED elements (material.model is \"linear\"): use {\"kind\": \"uniform\", "
+            "\"element\": \"linear\" or \"corotational\"}");
+}
+
+void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
+  auto b = cfg.optional("boundary");
+  if (!b) return;
+  c.has_boundary = true;
+  dynamics::Scene& scene = c.scene;
+  if (auto fixed = b->optional("fixed")) {
+    for (std::size_t i = 0; i < fixed->size(); ++i) {
+      const io::JsonReader e = (*fixed)[i];
+      dynamics::DisplacementConstraint con;
+      if (e.raw().is_string()) {
+        con.name = e.as_string();
+        const auto it = mesh.node_sets.find(con.name);
+        if (it == mesh.node_sets.end()) e.fail("the name of a node set of the mesh");
+        con.nodes = it->second;
+        if (con.nodes.empty()) e.fail("a non-empty node set");
+      } else {
+        con.nodes = read_selection(e, mesh, con.name);
+        con.components = read_components(e);
+        e.reject_unknown();
+      }
+      con.name = "fixed " + con.name;
+      scene.constraints.push_back(con);
+    }
+  }
+  if (auto pres = b->optional("prescribed")) {
+    for (std::size_t i = 0; i < pres->size(); ++i) {
+      const io::JsonReader e = (*pres)[i];
+      dynamics::DisplacementConstraint con;
+      con.nodes = read_selection(e, mesh, con.name);
+      con.name = "prescribed " + con.name;
+      con.displacement = read_vec3(e, "displacement");
+      con.components = read_components(e);
+      con.ramp = read_ramp(e);
+      e.reject_unknown();
+      scene.constraints.push_back(con);
+    }
+  }
+  if (auto forces = b->optional("forces")) {
+    for (std::size_t i = 0; i < forces->size(); ++i) {
+      const io::JsonReader e = (*forces)[i];
+      dynamics::NodalLoad load;
+      load.nodes = read_selection(e, mesh, load.name);
+      load.name = "force " + load.name;
+      load.force_per_node = read_vec3(e, "force");
+      if (e.get_choice("per", {"node", "total"}, "node") == "total")
+        load.force_per_node /= static_cast<double>(load.nodes.size());
+      load.ramp = read_ramp(e);
+      e.reject_unknown();
+      scene.loads.push_back(load);
+    }
+  }
+  if (b->has("gravity")) scene.gravity = read_vec3(*b, "gravity");
+  if (auto probe = b->optional("probe")) {
+    std::string name;
+    const std::vector<int> nodes = read_selection(*probe, mesh, name);
+    if (nodes.size() != 1) probe->fail("a node selector matching exactly one node");
+    scene.has_probe = true;
+    scene.probe.node = nodes.front();
+    scene.probe.stiffness = probe->get_positive("stiffness");
+    scene.probe.displacement = read_vec3(*probe, "displacement");
+    scene.probe.ramp = read_ramp(*probe);
+    probe->reject_unknown();
+  }
+  b->reject_unknown();
+}
+
+void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
+  auto s = cfg.optional("solver");
+  if (!s) return;
+  c.static_solver = s->get_choice("kind", {"explicit", "static"}, "explicit") == "static";
+  // Keys of the other solver kind are refused rather than silently ignored.
+  const std::set<std::string> explicit_keys = {"steps", "dt", "safety_factor", "force_dt", "energy_interval",
+                                               "energy_growth_limit"};
+  const std::set<std::string> static_keys = {"increments", "max_iterations", "tolerance"};
+  for (const auto& key : s->keys())
+    if ((c.static_solver && explicit_keys.count(key)) || (!c.static_solver && static_keys.count(key)))
+      s->at(key).fail(std::string("no ") + (c.static_solver ? "explicit" : "static") + "-solver key with solver.kind \"" +
+                      (c.static_solver ? "static" : "explicit") + "\"");
+  ExplicitConfig& e = c.explicit_solver;
+  e.steps = static_cast<int>(s->get_int("steps", e.steps));
+  s->require(e.steps >= 0, "steps", "a non-negative step count");
+  if (s->has("dt")) e.dt = s->get_positive("dt");
+  e.safety_factor = s->get_positive("safety_factor", e.safety_factor);
+  s->require(e.safety_factor <= 1.0, "safety_factor", "a factor in (0, 1]");
+  e.force_dt = s->get_bool("force_dt", false);
+  e.energy_interval = static_cast<int>(s->get_int("energy_interval", e.energy_interval));
+  s->require(e.energy_interval >= 1, "energy_interval", "a positive step count");
+  e.energy_growth_limit = s->get_positive("energy_growth_limit", e.energy_growth_limit);
+  s->require(e.energy_growth_limit >= 1.0, "energy_growth_limit", "a factor of at least 1");
+  dynamics::StaticOptions& st = c.static_options;
+  st.increments = static_cast<int>(s->get_int("increments", st.increments));
+  s->require(st.increments >= 1, "increments", "a positive increment count");
+  st.max_iterations = static_cast<int>(s->get_int("max_iterations", st.max_iterations));
+  s->require(st.max_iterations >= 1, "max_iterations", "a positive iteration count");
+  st.tolerance = s->get_positive("tolerance", st.tolerance);
+  s->reject_unknown();
+}
+
+void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
+  auto o = cfg.optional("output");
+  if (!o) return;
+  OutputConfig& out = c.output;
+  out.vtu = o->get_string("vtu", "");
+  out.vtu_interval = static_cast<int>(o->get_int("vtu_interval", 0));
+  o->require(out.vtu_interval >= 0, "vtu_interval", "a non-negative step count");
+  if (out.vtu_interval > 0 && out.vtu.empty()) o->fail("a \"vtu\" path together with \"vtu_interval\"");
+  if (auto traj = o->optional("trajectories")) {
+    for (std::size_t i = 0; i < traj->size(); ++i) {
+      const io::JsonReader e = (*traj)[i];
+      if (e.raw().is_number()) {
+        const auto v = e.as_int();
+        if (v < 0 || v >= mesh.num_nodes()) e.fail("a node index in [0, " + std::to_string(mesh.num_nodes() - 1) + "]");
+        out.trajectory_nodes.push_back(static_cast<int>(v));
+      } else {
+        std::string name;
+        for (int n : read_selection(e, mesh, name)) out.trajectory_nodes.push_back(n);
+        e.reject_unknown();
+      }
+    }
+  }
+  out.trajectory_interval = static_cast<int>(o->get_int("trajectory_interval", 1));
+  o->require(out.trajectory_interval >= 1, "trajectory_interval", "a positive step count");
+  out.velocity = o->get_bool("velocity", false);
+  o->reject_unknown();
+}
+
+void read_bench(const io::JsonReader& cfg, DhdConfig& c) {
+  auto b = cfg.optional("bench");
+  if (!b) return;
+  c.bench.steps = static_cast<int>(b->get_int("steps", c.bench.steps));
+  b->require(c.bench.steps >= 1, "steps", "a positive step count");
+  if (b->has("threads")) {
+    c.bench.threads.clear();
+    for (auto t : b->get_ints("threads")) {
+      b->require(t >= 1 && t <= 256, "threads", "thread counts between 1 and 256");
+      c.bench.threads.push_back(static_cast<int>(t));
+    }
+    b->require(!c.bench.threads.empty(), "threads", "at least one thread count");
+  }
+  if (b->has("linear_fraction")) {
+    c.bench.linear_fractions = b->at("linear_fraction").raw().is_array() ? b->get_doubles("linear_fraction")
+                                                                          : std::vector<double>{b->get_double("linear_fraction")};
+    for (double r : c.bench.linear_fractions)
+      b->require(r >= 0 && r <= 1, "linear_fraction", "a share in [0, 1] or a list of them");
+  }
+  b->reject_unknown();
+}
+
+}  // namespace
+
+std::string read_mesh_path(const io::JsonReader& config) { return config.get_string("mesh"); }
+
+DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) {
+  DhdConfig c;
+  c.mesh_path = read_mesh_path(cfg);
+  read_material(cfg, c);
+  if (auto d = cfg.optional("damping")) {
+    c.damping_alpha = d->get_double("alpha", 0.0);
+    d->require(c.damping_alpha >= 0, "alpha", "a non-negative damping coefficient (1/s)");
+    d->reject_unknown();
+  }
+  read_partition(cfg, mesh, c);
+  read_boundary(cfg, mesh, c);
+  read_solver(cfg, c);
+  read_output(cfg, mesh, c);
+  c.threads = static_cast<int>(cfg.get_int("threads", 1));
+  cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");
+  read_bench(cfg, c);
+  cfg.reject_unknown();
+  return c;
+}
+
+}  // namespace softsim::hybrid

@@ -1,0 +1,66 @@
+#pragma once
+// The dhd_sim configuration (documented in cpp/apps/dhd_sim.md), read strictly from JSON:
+// every key is checked, node selectors are resolved against the mesh, and any problem is an
+// InputError naming the file and JSON pointer.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "softsim/dynamics/scene.hpp"
+#include "softsim/dynamics/static_solver.hpp"
+#include "softsim/fem/constitutive.hpp"
+#include "softsim/hybrid/partition.hpp"
+#include "softsim/io/json_reader.hpp"
+#include "softsim/mesh/tet_mesh.hpp"
+
+namespace softsim::hybrid {
+
+struct ExplicitConfig {
+  int steps = 1000;
+  std::optional<double> dt;
+  double safety_factor = 0.9;
+  bool force_dt = false;
+  int energy_interval = 100;
+  double energy_growth_limit = 2.0;
+};
+
+struct OutputConfig {
+  std::string vtu;
+  int vtu_interval = 0;
+  std::vector<int> trajectory_nodes;
+  int trajectory_interval = 1;
+  bool velocity = false;
+};
+
+struct BenchConfig {
+  int steps = 500;
+  std::vector<int> threads = {1, 2};
+  std::vector<double> linear_fractions = {0.5};  // mixed partitions measured besides the uniform ones
+};
+
+struct DhdConfig {
+  std::string mesh_path;
+  std::string model = "neo_hookean_paper";  // as written in the config
+  bool linear_material = false;
+  fem::Material material;
+  double damping_alpha = 0;
+  PartitionSpec partition;
+  std::string strain_reference;  // path of the strain partition's reference artifact, if any
+  bool has_boundary = false;
+  dynamics::Scene scene;
+  bool static_solver = false;
+  ExplicitConfig explicit_solver;
+  dynamics::StaticOptions static_options;
+  OutputConfig output;
+  int threads = 1;
+  BenchConfig bench;
+};
+
+// The mesh path alone (the mesh must be loaded before the rest can be read).
+std::string read_mesh_path(const io::JsonReader& config);
+
+// Reads the whole config (calls reject_unknown on every object). A strain partition reads its
+// reference `dhd_result` artifact through io::Artifact.
+DhdConfig read_dhd_config(const io::JsonReader& config, const mesh::TetMesh& mesh);
+
+}  // namespace softsim::hybrid

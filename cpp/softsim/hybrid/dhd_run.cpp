@@ -1,0 +1,274 @@
+#include "softsim/hybrid/dhd_run.hpp"
+
+#include <chrono>
+
+#include "softsim/dynamics/lumped_mass.hpp"
+#include "softsim/dynamics/node_selection.hpp"
+#include "softsim/fem/element_set.hpp"
+
+namespace softsim::hybrid {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+nlohmann::json vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json field(const std::vector<double>& u) {
+  nlohmann::json a = nlohmann::json::array();
+  for (std::size_t i = 0; i + 2 < u.size(); i += 3) a.push_back({u[i], u[i + 1], u[i + 2]});
+  return a;
+}
+
+dynamics::ExplicitOptions explicit_options(const DhdConfig& c, double dt) {
+  dynamics::ExplicitOptions o;
+  o.dt = dt;
+  o.steps = c.explicit_solver.steps;
+  o.damping_alpha = c.damping_alpha;
+  o.threads = c.threads;
+  o.energy_interval = c.explicit_solver.energy_interval;
+  o.energy_growth_limit = c.explicit_solver.energy_growth_limit;
+  o.trajectory_nodes = c.output.trajectory_nodes;
+  o.trajectory_interval = c.output.trajectory_interval;
+  o.snapshot_interval = c.output.vtu_interval;
+  return o;
+}
+
+}  // namespace
+
+DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, const dynamics::SnapshotFn& snapshot) {
+  const auto t0 = Clock::now();
+  DhdRun run;
+  run.kinds = make_partition(mesh, c.partition);
+  run.critical = dynamics::critical_time_step(mesh, c.material.elastic);
+  if (c.static_solver) {
+    run.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    run.static_result = dynamics::solve_static(mesh, run.kinds, c.material, c.scene, c.static_options);
+    return run;
+  }
+  run.step = dynamics::choose_time_step(run.critical, c.explicit_solver.dt, c.explicit_solver.safety_factor,
+                                        c.explicit_solver.force_dt);
+  fem::ElementSet elements(mesh, run.kinds, c.material);
+  dynamics::ExplicitSolver solver(elements, dynamics::lumped_mass(mesh, c.material.elastic.density), c.scene,
+                                  explicit_options(c, run.step.dt));
+  run.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  run.explicit_result = solver.run(snapshot);
+  return run;
+}
+
+nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, const DhdRun& run) {
+  nlohmann::json p;
+  const std::vector<double>& u =
+      run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement;
+  p["displacement"] = field(u);
+  if (c.output.velocity && run.explicit_result) p["velocity"] = field(run.explicit_result->velocity);
+  std::vector<int> kinds(run.kinds.size());
+  std::array<int, fem::kNumElementKinds> counts{};
+  for (std::size_t e = 0; e < kinds.size(); ++e) {
+    kinds[e] = static_cast<int>(run.kinds[e]);
+    ++counts[kinds[e]];
+  }
+  p["element_kind"] = kinds;
+  p["element_kind_legend"] = {"linear", "tled", "corotational"};
+  p["element_counts"] = {{"linear", counts[0]},
+                         {"tled", counts[1]},
+                         {"corotational", counts[2]},
+                         {"linear_fraction", static_cast<double>(counts[0] + counts[2]) / kinds.size()}};
+  const auto& m = c.material;
+  p["material"] = {{"model", c.model},
+                   {"E", m.elastic.youngs_modulus},
+                   {"nu", m.elastic.poisson_ratio},
+                   {"density", m.elastic.density},
+                   {"mu", m.lame.mu},
+                   {"lambda", m.lame.lambda},
+                   {"bulk_modulus", m.neo_hookean.bulk},
+                   {"wave_speed", run.critical.wave_speed}};
+  p["mesh"] = {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}};
+  nlohmann::json reactions = nlohmann::json::array();
+  const auto& rs = run.explicit_result ? run.explicit_result->reactions : run.static_result->reactions;
+  for (std::size_t i = 0; i < rs.size(); ++i)
+    reactions.push_back({{"name", c.scene.constraints[i].name}, {"force", vec3(rs[i])}});
+  p["reactions"] = reactions;
+
+  if (run.static_result) {
+    const auto& s = *run.static_result;
+    p["solver"] = {{"kind", "static"},
+                   {"method", "newton"},
+                   {"increments", c.static_options.increments},
+                   {"iterations", s.iterations},
+                   {"residual", s.residual},
+                   {"force_scale", s.force_scale},
+                   {"tolerance", c.static_options.tolerance}};
+    p["energies"] = {{"strain", s.strain_energy}};
+    if (c.scene.has_probe)
+      p["probe"] = {{"node", c.scene.probe.node}, {"final_force", vec3(s.probe_force)}};
+    p["timing"] = {{"setup_seconds", run.setup_seconds}};
+    return p;
+  }
+  const auto& r = *run.explicit_result;
+  p["solver"] = {{"kind", "explicit"},
+                 {"method", "central_difference"},
+                 {"steps", r.steps},
+                 {"dt", r.dt},
+                 {"dt_critical", run.critical.dt},
+                 {"min_altitude", run.critical.min_altitude},
+                 {"wave_speed", run.critical.wave_speed},
+                 {"safety_factor", c.explicit_solver.dt ? r.dt / run.critical.dt : c.explicit_solver.safety_factor},
+                 {"dt_forced", run.step.forced},
+                 {"time", r.time},
+                 {"damping_alpha", c.damping_alpha}};
+  nlohmann::json en = {{"time", nlohmann::json::array()},
+                       {"kinetic", nlohmann::json::array()},
+                       {"strain", nlohmann::json::array()},
+                       {"external_work", nlohmann::json::array()},
+                       {"dissipated", nlohmann::json::array()}};
+  for (const auto& s : r.energies) {
+    en["time"].push_back(s.time);
+    en["kinetic"].push_back(s.kinetic);
+    en["strain"].push_back(s.strain);
+    en["external_work"].push_back(s.external_work);
+    en["dissipated"].push_back(s.dissipated);
+  }
+  p["energies"] = en;
+  if (!c.output.trajectory_nodes.empty()) {
+    nlohmann::json disp = nlohmann::json::array();
+    for (const auto& tr : r.trajectories) {
+      nlohmann::json one = nlohmann::json::array();
+      for (const auto& v : tr) one.push_back(vec3(v));
+      disp.push_back(one);
+    }
+    p["trajectories"] = {{"nodes", c.output.trajectory_nodes}, {"time", r.trajectory_time}, {"displacement", disp}};
+  }
+  if (c.scene.has_probe) {
+    nlohmann::json f = nlohmann::json::array();
+    for (const auto& v : r.probe_force) f.push_back(vec3(v));
+    p["probe"] = {{"node", c.scene.probe.node},
+                  {"time", r.probe_time},
+                  {"force", f},
+                  {"final_force", r.probe_force.empty() ? vec3(Eigen::Vector3d::Zero()) : vec3(r.probe_force.back())}};
+  }
+  nlohmann::json ns = nlohmann::json::object();
+  for (int k = 0; k < fem::kNumElementKinds; ++k) {
+    const int n = r.timing.element_counts[k];
+    if (n > 0 && r.steps > 0)
+      ns[fem::kind_name(static_cast<fem::ElementKind>(k))] = 1e9 * r.timing.kernel_seconds[k] / (double(n) * r.steps);
+  }
+  p["timing"] = {{"threads", r.timing.threads},
+                 {"steps", r.steps},
+                 {"wall_seconds", r.timing.wall_seconds},
+                 {"steps_per_second", r.timing.steps_per_second},
+                 {"setup_seconds", run.setup_seconds},
+                 {"sample_seconds", r.timing.sample_seconds},
+                 {"ns_per_element", ns},
+                 {"node_phase_ns_per_node",
+                  r.steps > 0 ? 1e9 * r.timing.node_seconds / (double(mesh.num_nodes()) * r.steps) : 0.0}};
+  return p;
+}
+
+dynamics::Scene default_bench_scene(const mesh::TetMesh& mesh, double ramp_time) {
+  dynamics::Scene scene;
+  const auto [lo, hi] = mesh::bounding_box(mesh);
+  const auto bottom = mesh.node_sets.find("bottom");
+  if (bottom != mesh.node_sets.end() && !bottom->second.empty()) {
+    dynamics::DisplacementConstraint fixed;
+    fixed.name = "fixed bottom";
+    fixed.nodes = bottom->second;
+    scene.constraints.push_back(fixed);
+  }
+  dynamics::DisplacementConstraint push;
+  push.name = "prescribed top centre";
+  push.nodes = {dynamics::nearest_node(mesh, Eigen::Vector3d(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), hi.z()))};
+  push.displacement = Eigen::Vector3d(0, 0, -0.1 * (hi.z() - lo.z()));
+  push.ramp.duration = ramp_time;
+  scene.constraints.push_back(push);
+  return scene;
+}
+
+std::vector<BenchRun> run_bench(const mesh::TetMesh& mesh, const DhdConfig& c) {
+  const dynamics::CriticalStep critical = dynamics::critical_time_step(mesh, c.material.elastic);
+  const double dt = dynamics::choose_time_step(critical, c.explicit_solver.dt, c.explicit_solver.safety_factor,
+                                               c.explicit_solver.force_dt)
+                        .dt;
+  const dynamics::Scene scene = c.has_boundary ? c.scene : default_bench_scene(mesh, c.bench.steps * dt);
+  const std::vector<double> masses = dynamics::lumped_mass(mesh, c.material.elastic.density);
+
+  struct Variant {
+    std::string name;
+    PartitionSpec spec;
+  };
+  std::vector<Variant> variants;
+  if (!c.linear_material) {
+    PartitionSpec all_tled;
+    all_tled.uniform_element = fem::ElementKind::tled;
+    variants.push_back({"all_tled", all_tled});
+  }
+  PartitionSpec all_linear;
+  all_linear.uniform_element = fem::ElementKind::linear;
+  variants.push_back({"all_linear", all_linear});
+  PartitionSpec all_corot;
+  all_corot.uniform_element = fem::ElementKind::corotational;
+  variants.push_back({"all_corotational", all_corot});
+  if (!c.linear_material)
+    for (double r : c.bench.linear_fractions) {
+      PartitionSpec mixed;
+      mixed.kind = PartitionKind::linear_fraction;
+      mixed.linear_fraction = r;
+      variants.push_back({"linear_fraction", mixed});
+    }
+
+  std::vector<BenchRun> out;
+  for (const Variant& v : variants) {
+    const std::vector<fem::ElementKind> kinds = make_partition(mesh, v.spec);
+    for (int threads : c.bench.threads) {
+      fem::ElementSet elements(mesh, kinds, c.material);
+      dynamics::ExplicitOptions o;
+      o.dt = dt;
+      o.steps = c.bench.steps;
+      o.damping_alpha = c.damping_alpha;
+      o.threads = threads;
+      o.energy_interval = c.bench.steps;  // timing of the stepping loop, one energy check
+      o.energy_growth_limit = c.explicit_solver.energy_growth_limit;
+      dynamics::ExplicitSolver solver(elements, masses, scene, o);
+      const dynamics::ExplicitResult r = solver.run();
+      BenchRun b;
+      b.partition = v.name;
+      b.linear_fraction = v.spec.kind == PartitionKind::linear_fraction ? v.spec.linear_fraction
+                          : v.spec.uniform_element == fem::ElementKind::tled ? 0.0
+                                                                               : 1.0;
+      b.threads = threads;
+      b.steps = r.steps;
+      b.steps_per_second = r.timing.steps_per_second;
+      for (int k = 0; k < fem::kNumElementKinds; ++k) {
+        const int n = r.timing.element_counts[k];
+        b.ns_per_element[k] = n > 0 ? 1e9 * r.timing.kernel_seconds[k] / (double(n) * r.steps) : 0.0;
+      }
+      b.node_ns_per_node = 1e9 * r.timing.node_seconds / (double(mesh.num_nodes()) * r.steps);
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
+nlohmann::json bench_payload(const mesh::TetMesh& mesh, const DhdConfig& c, const std::vector<BenchRun>& runs) {
+  nlohmann::json rs = nlohmann::json::array();
+  for (const auto& b : runs) {
+    nlohmann::json ns = nlohmann::json::object();
+    for (int k = 0; k < fem::kNumElementKinds; ++k)
+      if (b.ns_per_element[k] > 0) ns[fem::kind_name(static_cast<fem::ElementKind>(k))] = b.ns_per_element[k];
+    rs.push_back({{"partition", b.partition},
+                  {"linear_fraction", b.linear_fraction},
+                  {"threads", b.threads},
+                  {"steps", b.steps},
+                  {"steps_per_second", b.steps_per_second},
+                  {"ns_per_element", ns},
+                  {"node_phase_ns_per_node", b.node_ns_per_node}});
+  }
+  return {{"mesh", {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}}},
+          {"material", {{"model", c.model}, {"E", c.material.elastic.youngs_modulus}, {"nu", c.material.elastic.poisson_ratio},
+                        {"density", c.material.elastic.density}}},
+          {"scene", c.has_boundary ? "configured" : "default: bottom fixed, top centre pushed down 10 % of the height"},
+          {"precision", "double"},
+          {"runs", rs}};
+}
+
+}  // namespace softsim::hybrid

@@ -1,0 +1,181 @@
+"""Partition strategies at equal share r (000 §2.2.1 makes the top layers nonlinear; we also try
+a sphere around the tool and a strain-driven split, each with linear or corotational cheap
+elements) → results/dhd/partition_<load>.md/csv, partition_budget.md/csv, partition_error.png and
+the "partition" part of summary.md.
+
+Inputs: the dhd_sim stages named in params "stages" (every run's strategy, share and cheap kind
+are read from its config and checked against its artifact); one of them must hold the all-TLED
+run (r = 0) of each load.
+
+"Least error per unit of time" is answered two ways: at equal r (the same element counts, hence
+the same time per step for the same cheap kind) the error columns compare directly; and for an
+error budget (params "budgets", fractions) the table gives the largest speed-up over all-TLED
+each family reaches without exceeding it, interpolating linearly between shares. Times per step
+come from the cost model of dhd_common.cost_model (params "timing" names the dhd_timing stage)."""
+
+from pipeline import plots
+from pipeline.reports import dhd_common as common
+from pipeline.tables import fmt, write_table
+
+
+FAMILY_ORDER = [("layer", "linear"), ("distance", "linear"), ("strain", "linear"),
+                ("layer", "corotational"), ("distance", "corotational"), ("strain", "corotational")]
+
+
+def family_label(strategy: str, cheap_kind: str) -> str:
+    return f"{strategy}, {cheap_kind}"
+
+
+def family_rows(ctx, stages):
+    """{family label: {load: [row sorted by r]}}, a family being (strategy, cheap kind): every
+    run's error against the all-TLED run of its load (found in any of the stages) and its time
+    per step. The shared end points complete every family: r = 0 (all TLED) and r = 1 of the
+    family's cheap kind (all linear or all corotational; the strategy does not matter there)."""
+    rows = []
+    for stage in stages:
+        rows += common.sim_rows(ctx, stage)
+    common.errors_against_reference(rows)
+    ends = {}
+    for g in rows:
+        load = round(g["applied"], 12)
+        if g["cheap_elements"] == 0:
+            ends.setdefault((load, None), g)
+        elif g["tled_elements"] == 0:
+            ends.setdefault((load, g["cheap_kind"]), g)
+    groups = {}
+    for g in rows:
+        if 0 < g["cheap_elements"] < g["elements"]:
+            groups.setdefault((g["strategy"], g["cheap_kind"]), {}).setdefault(round(g["applied"], 12), []).append(g)
+    keys = [k for k in FAMILY_ORDER if k in groups] + sorted(k for k in groups if k not in FAMILY_ORDER)
+    out = {}
+    for strategy, kind in keys:
+        by_load = groups[(strategy, kind)]
+        for load, group in by_load.items():
+            for end in (ends.get((load, None)), ends.get((load, kind))):
+                if end is not None:
+                    group.append(end)
+            by_load[load] = sorted(group, key=lambda x: x["r"])
+        out[family_label(strategy, kind)] = by_load
+    return out
+
+
+def best_speedup_within(points, budget):
+    """Largest speed-up (t_ref / t) over points (speed-up, error) sorted by r, with the error
+    interpolated linearly between neighbouring shares, that keeps the error ≤ budget."""
+    best = None
+    for (s0, e0), (s1, e1) in zip(points[:-1], points[1:]):
+        for s, e in ((s0, e0), (s1, e1)):
+            if e <= budget:
+                best = s if best is None else max(best, s)
+        if (e0 - budget) * (e1 - budget) < 0:
+            s = s0 + (budget - e0) / (e1 - e0) * (s1 - s0)
+            best = s if best is None else max(best, s)
+    if len(points) == 1 and points[0][1] <= budget:
+        best = points[0][0]
+    return best
+
+
+def report(ctx):
+    unit = ctx.params.get("display_unit", "cm")
+    unit_scale = {"cm": 100.0, "mm": 1000.0, "m": 1.0}[unit]
+    budgets = ctx.params.get("budgets", [0.02, 0.05, 0.10])
+    data = family_rows(ctx, ctx.params["stages"])
+    labels = list(data)
+    uniform, _ = common.cost_model(ctx.runs(ctx.params.get("timing", "timing"))[0].payload)
+    for fam in data.values():
+        for group in fam.values():
+            for x in group:
+                x["model_seconds_per_step"] = common.model_time(uniform, x["counts"])
+    loads = sorted({load for fam in data.values() for load in fam})
+    mds = []
+    for load in loads:
+        shares = sorted({round(g["r"], 6) for fam in data.values() for g in fam.get(load, [])})
+        body = []
+        for r in shares:
+            row = [f"{int(round(100 * r))} %"]
+            for label in labels:
+                g = next((x for x in data[label].get(load, []) if round(x["r"], 6) == r), None)
+                row.append(common.pct(g["error"]["rel_mean"], 2) if g else None)
+            for kind in ("linear", "corotational"):
+                if kind in uniform:
+                    m = 1000  # any element count: the model depends on the shares only
+                    row.append(common.model_time(uniform, {"tled": m - round(r * m), kind: round(r * m)}) / uniform["tled"])
+            body.append(row)
+        name = f"partition_{fmt(load * unit_scale)}{unit}".replace(".", "p")
+        md = write_table(ctx, name, ["r"] + [f"e {lab} (%)" for lab in labels]
+                         + [f"time per step / all-TLED, {k} cheap" for k in ("linear", "corotational") if k in uniform],
+                         body,
+                         f"**Partition strategies at equal share r, top centre pushed down "
+                         f"{fmt(load * unit_scale)} {unit}.** Error e = Σ|u − u_TLED| / Σ|u_TLED| against "
+                         "the all-TLED run (settled state); time per step relative to all-TLED from the cost model "
+                         f"(all-TLED {fmt(1e6 * uniform['tled'], 3)} µs, all-linear "
+                         f"{fmt(1e6 * uniform.get('linear', float('nan')), 3)} µs, all-corotational "
+                         f"{fmt(1e6 * uniform.get('corotational', float('nan')), 3)} µs per step, one thread).")
+        mds.append(md)
+
+    # Error budgets: the speed-up each family reaches.
+    budget_rows = []
+    for load in loads:
+        for label in labels:
+            pts = [(uniform["tled"] / x["model_seconds_per_step"], x["error"]["rel_mean"])
+                   for x in data[label].get(load, [])]
+            budget_rows.append([f"{fmt(load * unit_scale)} {unit}", label]
+                               + [best_speedup_within(pts, b) for b in budgets])
+    budget_md = write_table(ctx, "partition_budget", ["applied", "family"]
+                            + [f"speed-up within e ≤ {fmt(100 * b)} %" for b in budgets], budget_rows,
+                            "**Largest speed-up over all-TLED (time per step ratio, cost model) each family "
+                            "reaches while its error stays within the budget** (linear interpolation between the "
+                            "measured shares; 1: only all-TLED stays within it).")
+
+    # Plot: error vs r per family, one panel per load.
+    fig, axes = plots.plt.subplots(1, len(loads), figsize=(5.2 * len(loads), 4.2), dpi=110, squeeze=False)
+    styles = {}
+    for i, label in enumerate(labels):
+        styles[label] = dict(color=f"C{i % 3}", ls="-" if "corot" not in label else "--",
+                             marker="os^"[i % 3])
+    for ax, load in zip(axes[0], loads):
+        for label in labels:
+            g = data[label].get(load, [])
+            ax.plot([100 * x["r"] for x in g], [100 * x["error"]["rel_mean"] for x in g], label=label,
+                    ms=4, **styles[label])
+        ax.set_title(f"top centre displaced by {fmt(load * unit_scale)} {unit}", fontsize=9)
+        ax.set_xlabel("share of cheap elements r (%)")
+        ax.set_ylabel("mean error e (%)")
+        ax.grid(True, alpha=0.3)
+        ax.set_yscale("symlog", linthresh=0.1)
+    axes[0][0].legend(fontsize=7)
+    common.save(fig, ctx, "partition_error.png")
+
+    # Plain words: which family wins at equal r, and per budget.
+    words = []
+    total_wins, total_shares = {}, 0
+    for load in loads:
+        wins = {}
+        for r in sorted({round(x["r"], 6) for fam in data.values() for x in fam.get(load, [])}):
+            if r in (0.0, 1.0):
+                continue
+            cands = [(x["error"]["rel_mean"], label) for label in labels
+                     for x in data[label].get(load, []) if round(x["r"], 6) == r]
+            if cands:
+                wins[min(cands)[1]] = wins.get(min(cands)[1], 0) + 1
+                total_wins[min(cands)[1]] = total_wins.get(min(cands)[1], 0) + 1
+                total_shares += 1
+        ranking = ", ".join(f"{k} at {v}" for k, v in sorted(wins.items(), key=lambda kv: -kv[1]))
+        words.append(f"At {fmt(load * unit_scale)} {unit} the smallest error at equal r comes from: {ranking} "
+                     "of the shares.")
+    for b_i, b in enumerate(budgets):
+        parts = []
+        for load in loads:
+            cands = [(row[2 + b_i], row[1]) for row in budget_rows
+                     if row[0] == f"{fmt(load * unit_scale)} {unit}" and row[2 + b_i] is not None]
+            if cands:
+                best = max(cands)
+                parts.append(f"{best[1]} at {fmt(load * unit_scale)} {unit} ({fmt(best[0], 3)}× all-TLED)")
+        if parts:
+            words.append(f"Within e ≤ {fmt(100 * b)} % the fastest is " + "; ".join(parts) + ".")
+    lines = ["### Partition strategy at equal share\n"] + mds + [budget_md]
+    lines.append("Plot: [dhd/partition_error.png](dhd/partition_error.png).\n")
+    lines.append(" ".join(words) + "\n")
+    best = max(total_wins, key=total_wins.get) if total_wins else None
+    facts = {"best_family": best, "best_wins": total_wins.get(best), "shares": total_shares}
+    common.write_section(ctx, "partition", "\n".join(lines), facts)

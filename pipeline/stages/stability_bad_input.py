@@ -1,0 +1,59 @@
+"""The bad-input corpus (tests/bad_input/, see its README.md) run as an experiment ->
+"stability_bad_input" v1: for every case the exit code, the number of stderr lines, whether the
+expected fragments were named, and whether an output file was left behind. The pytest harness
+(tests/pipeline/test_bad_input.py) asserts the same contract; this stage records it for
+results/stability/ so the summary can say what each executable does with bad input.
+
+Config: {"inputs": {"@MESH@": artifact, "@DATASET_X@": ..., "@FIT@": ...}}
+"""
+import json
+import subprocess
+import tempfile
+from pathlib import Path
+
+from pipeline.artifacts import write_artifact
+from pipeline.paths import ROOT
+from pipeline.stages.stability_common import tool_hashes, tool_path
+
+SCHEMA = "stability_bad_input"
+TOOL = "pipeline.stages.stability_bad_input"
+CORPUS = ROOT / "tests" / "bad_input"
+
+
+def run_case(tool, name, case, inputs, folder):
+    args = []
+    if case.get("mode"):
+        args.append(case["mode"])
+    args += case.get("args", [])
+    config = None
+    if case["config"] is not None:
+        text = (CORPUS / tool / case["config"]).read_text()
+        for key, path in inputs.items():
+            text = text.replace(key, str(path))
+        text = text.replace("@DIR@", f"tests/bad_input/{tool}")
+        config = Path(folder) / f"{tool}.{name}.json"
+        config.write_text(text)
+        args += ["--config", str(config)]
+    out = Path(folder) / f"{tool}.{name}.out.json"
+    args += ["--out", str(out)]
+    proc = subprocess.run([str(tool_path(tool))] + args, cwd=ROOT, capture_output=True, text=True, timeout=120)
+    lines = [l for l in proc.stderr.splitlines() if l.strip()]
+    named = all(f.replace("@CONFIG@", str(config)) in (lines[0] if lines else "") for f in case.get("expect", []))
+    row = {"tool": tool, "case": name, "why": case["why"], "good": bool(case.get("good")), "exit": proc.returncode,
+           "lines": len(lines), "message": (lines[-1] if lines else "").replace(str(folder) + "/", ""),
+           "named": named, "output_left": out.exists(), "known_issue": case.get("known_issue")}
+    if out.exists():
+        out.unlink()
+    return row
+
+
+def run(ctx):
+    inputs = ctx.config["inputs"]
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="bad_input_") as tmp:
+        for manifest in sorted(CORPUS.glob("*/cases.json")):
+            tool = manifest.parent.name
+            for name, case in json.loads(manifest.read_text()).items():
+                rows.append(run_case(tool, name, case, inputs, tmp))
+    tools = sorted({r["tool"] for r in rows})
+    write_artifact(ctx.out_path, SCHEMA, 1, TOOL, ctx.config, {"rows": rows, "tools": tool_hashes(tools)})

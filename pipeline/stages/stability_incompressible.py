@@ -1,0 +1,160 @@
+"""Near incompressibility -> "stability_incompressible" v1.
+
+A cantilever (clamped at x = 0, uniform pressure on the top face) of a nearly incompressible
+linear elastic material, ν swept towards 0.5:
+
+- dhd_sim's static solve with its tetrahedra (the elements listed in `elements`, e.g. the
+  constant-strain `linear` tet and, when the build has it, the average-nodal-pressure tet);
+- CalculiX C3D4 on the very same tets (the same discrete problem: confirms that a stiff answer
+  is the element's locking and not our code);
+- CalculiX C3D20R hexahedra (quadratic, reduced integration: free of volumetric locking) on the
+  same box, the reference.
+
+The compared quantity is the mean vertical deflection of the nodes of the free end (x = L),
+which both meshes share. Also reported per ν: the paper's critical step Δt_cr = h_min/c
+(000 eqs. 34–35), the exact linear limit 2/ω_max of the tet mesh (stability_fem), and dhd_sim's
+own Δt_cr from a short explicit run with the automatic step (it must run).
+
+Config:
+  mesh:      tet_mesh artifact of the box (a mesher cuboid)
+  E, density, nus: material
+  pressure:  Pa on the top face (downwards)
+  elements:  dhd_sim partition elements to try (uniform partition, static solver, linear material)
+  ccx:       {"element_type": "C3D20R", "refine": 1} (hex divisions = the cuboid cells × refine)
+  explicit_steps: steps of the short explicit run per ν (0: none)
+"""
+import numpy as np
+
+from pipeline.artifacts import write_artifact
+from pipeline.stages import stability_fem as fem
+from pipeline.stages.calculix import solve_tet_mesh
+from pipeline.stages.calculix_ccx import (fmt, last_block, nset_lines, parse_dat, run_deck, sorted_rows,
+                                          static_step_lines)
+from pipeline.stages.calculix_plate import PlateMesh
+from pipeline.stages.stability_common import read_payload, run_tool, tool_hashes
+
+SCHEMA = "stability_incompressible"
+TOOL = "pipeline.stages.stability_incompressible"
+
+
+def top_face_loads(X, boundary, pressure):
+    """Consistent nodal loads of a uniform pressure on the boundary triangles of the top face
+    (linear triangles: a third of the triangle's force to each corner)."""
+    ztop = X[:, 2].max()
+    tol = 1e-9 * (X[:, 2].max() - X[:, 2].min())
+    f = np.zeros(len(X))
+    for tri in boundary:
+        if all(abs(X[n, 2] - ztop) <= tol for n in tri):
+            a = 0.5 * np.linalg.norm(np.cross(X[tri[1]] - X[tri[0]], X[tri[2]] - X[tri[0]]))
+            for n in tri:
+                f[n] -= pressure * a / 3.0
+    return {int(n): float(v) for n, v in enumerate(f) if v != 0.0}
+
+
+def boundary_block(fixed, loads):
+    """dhd_sim's boundary block (the CalculiX stage reads the same syntax)."""
+    return {"fixed": [{"nodes": fixed}],
+            "forces": [{"nodes": [n], "force": [0, 0, f]} for n, f in loads.items()]}
+
+
+def dhd_static(mesh_path, element, E, nu, rho, fixed, loads):
+    cfg = {"mesh": mesh_path, "material": {"model": "linear", "E": E, "nu": nu, "density": rho},
+           "partition": {"kind": "uniform", "element": element},
+           "boundary": boundary_block(fixed, loads),
+           "solver": {"kind": "static", "increments": 1}}
+    return run_tool("dhd_sim", cfg)
+
+
+def ccx_hex_deck(box, divisions, element_type, E, nu, pressure):
+    mesh = PlateMesh(box, divisions, element_type)
+    P = mesh.positions
+    tol = 1e-9 * max(box)
+    fixed = [i + 1 for i in np.flatnonzero(np.abs(P[:, 0]) <= tol)]
+    L = ["** pipeline.stages.stability_incompressible: cantilever under top pressure", "*NODE, NSET=NALL"]
+    L += [f"{n + 1}, {fmt(x)}, {fmt(y)}, {fmt(z)}" for n, (x, y, z) in enumerate(P)]
+    L.append(f"*ELEMENT, TYPE={element_type}, ELSET=EALL")
+    for e, conn in enumerate(mesh.elements):
+        ids = [str(e + 1)] + [str(n) for n in conn]
+        L.append(", ".join(ids[:16]) + ("," if len(ids) > 16 else ""))
+        if len(ids) > 16:
+            L.append(", ".join(ids[16:]))
+    nx, ny, nz = divisions
+    top_layer = [1 + i + nx * (j + ny * (nz - 1)) for j in range(ny) for i in range(nx)]
+    L += ["*ELSET, ELSET=ETOP"] + [", ".join(str(e) for e in top_layer[k:k + 16]) for k in range(0, len(top_layer), 16)]
+    L += nset_lines("FIXED", fixed)
+    L += ["*MATERIAL, NAME=MAT", "*ELASTIC", f"{fmt(E)}, {fmt(nu)}", "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT"]
+    L += static_step_lines(False, 1, 1, 1.0, False)
+    L += ["*BOUNDARY", "FIXED, 1, 3, 0.0", "*DLOAD", f"ETOP, P2, {fmt(pressure)}",
+          "*NODE PRINT, NSET=NALL, FREQUENCY=100000000", "U", "*END STEP"]
+    return "\n".join(L) + "\n", mesh
+
+
+def ccx_hex_tip(box, divisions, element_type, E, nu, pressure, tip_points):
+    deck, mesh = ccx_hex_deck(box, divisions, element_type, E, nu, pressure)
+    dat, _, _ = run_deck(deck, timeout=600)
+    block = last_block(parse_dat(dat), "displacements", "NALL")
+    ids = []
+    for p in tip_points:
+        n = mesh.node_at(np.asarray(p))
+        if n is None:
+            raise ValueError(f"the hexahedral mesh has no node at {p}")
+        ids.append(n)
+    u = np.array(sorted_rows(block, ids))
+    return float(u[:, 2].mean()), len(mesh.elements)
+
+
+def run(ctx):
+    cfg = ctx.config
+    mesh = read_payload(cfg["mesh"])
+    X, T = np.array(mesh["nodes"]), np.array(mesh["tets"])
+    lo, hi = X.min(axis=0), X.max(axis=0)
+    box = (hi - lo).tolist()
+    if np.linalg.norm(lo) > 1e-12:
+        raise ValueError("the cantilever box must start at the origin")
+    tol = 1e-9 * max(box)
+    fixed = [int(i) for i in np.flatnonzero(X[:, 0] <= lo[0] + tol)]
+    tip = [int(i) for i in np.flatnonzero(X[:, 0] >= hi[0] - tol)]
+    # Loads on the clamped nodes would go straight into the reaction: left out.
+    loads = {n: f for n, f in top_face_loads(X, mesh["boundary"], cfg["pressure"]).items() if n not in set(fixed)}
+    cells = mesh.get("source", {}).get("cells")
+    refine = cfg["ccx"].get("refine", 1)
+    divisions = [c * refine for c in cells]
+    E, rho = cfg["E"], cfg["density"]
+    geo = fem.tet_geometry(X, T)
+    # Euler–Bernoulli cantilever under a uniform line load q = p b: δ = q L⁴ / (8 E I).
+    Lx, b, h = box
+    beam = {"deflection_per_E": -cfg["pressure"] * b * Lx ** 4 / (8 * (b * h ** 3 / 12))}
+    rows = []
+    for nu in cfg["nus"]:
+        row = {"nu": nu}
+        for element in cfg["elements"]:
+            out = dhd_static(cfg["mesh"], element, E, nu, rho, fixed, loads)
+            row[element] = (float(np.mean([out.payload["displacement"][n][2] for n in tip])) if out.ok
+                            else None)
+            row[f"{element}_outcome"] = out.as_json()
+        c4 = solve_tet_mesh(mesh, {"model": "linear", "E": E, "nu": nu}, boundary_block(fixed, loads))
+        row["ccx_C3D4"] = float(np.mean([c4["displacement"][n][2] for n in tip]))
+        ref, n_hex = ccx_hex_tip(box, divisions, cfg["ccx"]["element_type"], E, nu, cfg["pressure"], X[tip].tolist())
+        row["ccx_" + cfg["ccx"]["element_type"]] = ref
+        row["euler_bernoulli"] = beam["deflection_per_E"] / E
+        c = float(fem.wave_speed(E, nu, rho))
+        row["wave_speed"] = c
+        row["dt_critical"] = float(geo["altitude"].min() / c)
+        omega = fem.max_frequency(X, T, E, nu, rho, fixed)
+        row["dt_exact_linear"] = 2.0 / omega
+        if cfg.get("explicit_steps", 0) > 0:
+            ex = run_tool("dhd_sim", {"mesh": cfg["mesh"], "material": {"model": "neo_hookean_paper", "E": E, "nu": nu, "density": rho},
+                                      "damping": {"alpha": 0.0},
+                                      "boundary": boundary_block(fixed, loads),
+                                      "solver": {"kind": "explicit", "steps": cfg["explicit_steps"]}})
+            row["explicit_auto"] = ex.as_json()
+            if ex.ok:
+                row["explicit_auto"]["dt"] = ex.payload["solver"]["dt"]
+                row["explicit_auto"]["dt_critical"] = ex.payload["solver"]["dt_critical"]
+        rows.append(row)
+        ctx.log(f"nu={nu}: " + ", ".join(f"{k}={row[k]}" for k in cfg["elements"] + ["ccx_C3D4"]) + f", ref={ref}")
+    payload = {"rows": rows, "box": box, "cells": cells, "hex_divisions": divisions, "hex_elements": n_hex,
+               "hex_element_type": cfg["ccx"]["element_type"], "tets": len(T), "nodes": len(X),
+               "tip_nodes": len(tip), "fixed_nodes": len(fixed), "pressure": cfg["pressure"],
+               "E": E, "density": rho, "elements": cfg["elements"], "tools": tool_hashes(["dhd_sim"])}
+    write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["mesh"]])

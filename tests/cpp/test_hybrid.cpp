@@ -1,0 +1,366 @@
+// Dual-mode partitioning (000 §2.2.1) and the dhd_sim configuration: the linear share is met
+// exactly with the farthest elements linear first, layers / tags / sphere / strain-driven
+// splits select what they claim, corotational can replace linear, interface nodes need no
+// special treatment (summed forces, exact where the kinds agree), the config is read strictly, and
+// the executable's exit codes follow the contract (2 for a refused time step, 3 and no
+// artifact for a numerical failure).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "softsim/dynamics/node_selection.hpp"
+#include "softsim/dynamics/static_solver.hpp"
+#include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/hybrid/dhd_run.hpp"
+#include "softsim/hybrid/partition.hpp"
+#include "softsim/io/artifact.hpp"
+#include "softsim/io/errors.hpp"
+#include "softsim/io/mesh_artifact.hpp"
+#include "softsim/mesh/cuboid.hpp"
+
+using namespace softsim;
+using fem::ElementKind;
+namespace fs = std::filesystem;
+
+namespace {
+
+const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};
+
+mesh::TetMesh cuboid(int nx, int ny, int nz, double lx, double ly, double lz) {
+  mesh::CuboidSpec s;
+  s.cells = {nx, ny, nz};
+  s.size = Eigen::Vector3d(lx, ly, lz);
+  return mesh::make_cuboid(s);
+}
+
+int count(const std::vector<ElementKind>& k, ElementKind kind) {
+  return static_cast<int>(std::count(k.begin(), k.end(), kind));
+}
+
+hybrid::DhdConfig parse(const nlohmann::json& j, const mesh::TetMesh& m) {
+  const io::JsonReader r(j, "test.json");
+  return hybrid::read_dhd_config(r, m);
+}
+
+// A scratch directory under the build tree, removed at the end of the test.
+struct Scratch {
+  fs::path dir;
+  explicit Scratch(const std::string& name) : dir(fs::path(SOFTSIM_BIN_DIR) / ".." / ("test_hybrid_" + name)) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+  std::string path(const std::string& f) const { return (dir / f).string(); }
+};
+
+void write_json(const std::string& path, const nlohmann::json& j) { std::ofstream(path) << j.dump(1); }
+
+int run_dhd_sim(const std::string& config, const std::string& out, const std::string& extra = "") {
+  const std::string cmd = std::string(SOFTSIM_BIN_DIR) + "/dhd_sim " + extra + " --config " + config + " --out " + out +
+                          " > /dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WEXITSTATUS(status);
+}
+
+}  // namespace
+
+TEST(Partition, LinearFractionIsExactAndFarthestFirst) {
+  const auto m = cuboid(6, 6, 4, 0.06, 0.06, 0.04);  // 720 elements
+  const auto centroids = hybrid::element_centroids(m);
+  const Eigen::Vector3d p = hybrid::default_operating_point(m);
+  EXPECT_TRUE(p.isApprox(Eigen::Vector3d(0.03, 0.03, 0.04)));
+  for (double r : {0.0, 0.1, 0.25, 0.333, 0.5, 1.0}) {
+    hybrid::PartitionSpec s;
+    s.kind = hybrid::PartitionKind::linear_fraction;
+    s.linear_fraction = r;
+    const auto kinds = hybrid::make_partition(m, s);
+    EXPECT_EQ(count(kinds, ElementKind::linear), std::llround(r * m.num_tets())) << "r = " << r;
+    double nearest_linear = 1e300, farthest_tled = 0;
+    for (int e = 0; e < m.num_tets(); ++e) {
+      const double d = (centroids[e] - p).norm();
+      if (kinds[e] == ElementKind::linear) nearest_linear = std::min(nearest_linear, d);
+      else farthest_tled = std::max(farthest_tled, d);
+    }
+    if (r > 0 && r < 1) EXPECT_GE(nearest_linear, farthest_tled);
+  }
+}
+
+TEST(Partition, DepthDistanceMakesTheLowestElementsLinear) {
+  const auto m = cuboid(4, 4, 5, 0.04, 0.04, 0.05);
+  hybrid::PartitionSpec s;
+  s.kind = hybrid::PartitionKind::linear_fraction;
+  s.linear_fraction = 0.4;  // exactly the two bottom layers
+  s.distance = hybrid::DistanceMetric::depth;
+  const auto kinds = hybrid::make_partition(m, s);
+  const auto& layer = m.element_tags.at("layer");
+  for (int e = 0; e < m.num_tets(); ++e)
+    EXPECT_EQ(kinds[e], layer[e] < 2 ? ElementKind::linear : ElementKind::tled) << "element " << e;
+}
+
+TEST(Partition, TopLayersNonlinear) {
+  const auto m = cuboid(3, 3, 5, 0.03, 0.03, 0.05);
+  hybrid::PartitionSpec s;
+  s.kind = hybrid::PartitionKind::layers;
+  s.nonlinear_layers = 2;
+  const auto kinds = hybrid::make_partition(m, s);
+  const auto& layer = m.element_tags.at("layer");
+  for (int e = 0; e < m.num_tets(); ++e) EXPECT_EQ(kinds[e] == ElementKind::tled, layer[e] >= 3);
+  s.linear_element = ElementKind::corotational;
+  const auto corot = hybrid::make_partition(m, s);
+  EXPECT_EQ(count(corot, ElementKind::linear), 0);
+  EXPECT_EQ(count(corot, ElementKind::corotational), 3 * 45);
+}
+
+TEST(Partition, TagsSphereAndMissingTag) {
+  auto m = cuboid(4, 4, 4, 0.04, 0.04, 0.04);
+  auto& region = m.element_tags["region"];
+  for (int e = 0; e < m.num_tets(); ++e) region[e] = e % 3;
+  hybrid::PartitionSpec t;
+  t.kind = hybrid::PartitionKind::tags;
+  t.tag = "region";
+  t.nonlinear_values = {2};
+  const auto kt = hybrid::make_partition(m, t);
+  for (int e = 0; e < m.num_tets(); ++e) EXPECT_EQ(kt[e] == ElementKind::tled, e % 3 == 2);
+  hybrid::PartitionSpec s;
+  s.kind = hybrid::PartitionKind::sphere;
+  s.center = Eigen::Vector3d(0.02, 0.02, 0.04);
+  s.radius = 0.015;
+  const auto ks = hybrid::make_partition(m, s);
+  const auto c = hybrid::element_centroids(m);
+  int inside = 0;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    EXPECT_EQ(ks[e] == ElementKind::tled, (c[e] - s.center).norm() <= s.radius);
+    inside += ks[e] == ElementKind::tled;
+  }
+  EXPECT_GT(inside, 0);
+  EXPECT_LT(inside, m.num_tets());
+  t.tag = "no_such_tag";
+  EXPECT_THROW(hybrid::make_partition(m, t), InputError);
+}
+
+TEST(Partition, StrainDrivenSplitFollowsTheReferenceSolution) {
+  // Reference: static TLED solution of a pushed top centre. The strained region is under the
+  // tool: by threshold and by fraction, the most strained elements become TLED.
+  const auto m = cuboid(5, 5, 3, 0.05, 0.05, 0.03);
+  dynamics::Scene scene;
+  dynamics::DisplacementConstraint bottom, push;
+  bottom.nodes = m.node_sets.at("bottom");
+  push.nodes = {dynamics::nearest_node(m, Eigen::Vector3d(0.025, 0.025, 0.03))};
+  push.displacement = Eigen::Vector3d(0, 0, -0.005);
+  scene.constraints = {bottom, push};
+  const auto ref = dynamics::solve_static(m, std::vector<ElementKind>(m.num_tets(), ElementKind::tled),
+                                          fem::Material::make(kPaper, material::NeoHookeanForm::paper), scene, {});
+  const auto strain = hybrid::element_strain(m, ref.displacement, hybrid::StrainMeasure::green_lagrange);
+  hybrid::PartitionSpec s;
+  s.kind = hybrid::PartitionKind::strain;
+  s.reference_displacement = ref.displacement;
+  s.measure = hybrid::StrainMeasure::green_lagrange;
+  s.threshold = 0.02;
+  const auto by_threshold = hybrid::make_partition(m, s);
+  for (int e = 0; e < m.num_tets(); ++e) EXPECT_EQ(by_threshold[e] == ElementKind::tled, strain[e] > 0.02);
+  EXPECT_GT(count(by_threshold, ElementKind::tled), 0);
+  s.threshold.reset();
+  s.linear_fraction = 0.8;
+  const auto by_fraction = hybrid::make_partition(m, s);
+  EXPECT_EQ(count(by_fraction, ElementKind::linear), std::llround(0.8 * m.num_tets()));
+  double max_linear = 0, min_tled = 1e300;
+  for (int e = 0; e < m.num_tets(); ++e)
+    (by_fraction[e] == ElementKind::linear ? max_linear : min_tled) =
+        by_fraction[e] == ElementKind::linear ? std::max(max_linear, strain[e]) : std::min(min_tled, strain[e]);
+  EXPECT_LE(max_linear, min_tled);
+  // The strain under the tool is the largest.
+  const int top_centre_element = static_cast<int>(std::max_element(strain.begin(), strain.end()) - strain.begin());
+  EXPECT_LT((hybrid::element_centroids(m)[top_centre_element] - Eigen::Vector3d(0.025, 0.025, 0.03)).norm(), 0.015);
+}
+
+namespace {
+// Static solve with every boundary node prescribed to X ↦ F X; returns the largest deviation
+// of an interior node from the same affine map.
+double mixed_patch_error(const mesh::TetMesh& m, const std::vector<ElementKind>& kinds, const Eigen::Matrix3d& F) {
+  dynamics::Scene scene;
+  for (int i : m.node_sets.at("boundary")) {
+    dynamics::DisplacementConstraint c;
+    c.nodes = {i};
+    c.displacement = (F - Eigen::Matrix3d::Identity()) * m.nodes[i];
+    scene.constraints.push_back(c);
+  }
+  dynamics::StaticOptions opt;
+  opt.increments = 2;
+  opt.tolerance = 1e-11;
+  const auto r = dynamics::solve_static(m, kinds, fem::Material::make(kPaper, material::NeoHookeanForm::paper), scene, opt);
+  const auto& b = m.node_sets.at("boundary");
+  double err = 0;
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    if (std::binary_search(b.begin(), b.end(), i)) continue;
+    const Eigen::Vector3d expected = (F - Eigen::Matrix3d::Identity()) * m.nodes[i];
+    for (int k = 0; k < 3; ++k) err = std::max(err, std::abs(r.displacement[3 * i + k] - expected[k]));
+  }
+  return err;
+}
+}  // namespace
+
+TEST(Hybrid, InterfaceNodesNeedNoTreatment) {
+  // Element forces are simply summed at every node (000 §2.2.3). Where the kinds share a
+  // constitutive response the mixed mesh is as exact as a uniform one: linear and corotational
+  // elements coincide for a rotation-free (symmetric) F of any size, so a checkerboard of the two
+  // passes the patch test exactly.
+  const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
+  std::vector<ElementKind> lin_corot(m.num_tets());
+  for (int e = 0; e < m.num_tets(); ++e) lin_corot[e] = e % 2 ? ElementKind::linear : ElementKind::corotational;
+  Eigen::Matrix3d U;
+  U << 1.08, 0.03, -0.02, 0.03, 0.94, 0.04, -0.02, 0.04, 1.05;
+  EXPECT_LT(mixed_patch_error(m, lin_corot, U), 1e-10 * 0.03);
+  // With all three kinds the laws differ at second order in the strain, and so does the
+  // deviation from the homogeneous field: no first-order error from the interfaces.
+  std::vector<ElementKind> three(m.num_tets());
+  for (int e = 0; e < m.num_tets(); ++e) three[e] = static_cast<ElementKind>(e % 3);
+  Eigen::Matrix3d H;
+  H << 0.5, 0.2, 0.0, -0.1, -0.3, 0.3, 0.0, 0.2, 0.2;
+  std::vector<double> relative;
+  for (double eps : {1e-2, 1e-3}) {
+    const double err = mixed_patch_error(m, three, Eigen::Matrix3d::Identity() + eps * H);
+    relative.push_back(err / (eps * 0.03));
+  }
+  EXPECT_LT(relative[0], 0.05);
+  EXPECT_NEAR(relative[1] / relative[0], 0.1, 0.03);
+}
+
+TEST(Config, FullConfigIsReadAndSelectorsResolved) {
+  const auto m = cuboid(4, 4, 2, 0.04, 0.04, 0.02);
+  const nlohmann::json j = nlohmann::json::parse(R"({
+    "mesh": "unused.json",
+    "material": {"model": "neo_hookean_decoupled", "E": 3000, "nu": 0.45, "density": 1100},
+    "damping": {"alpha": 3.0},
+    "partition": {"linear_fraction": 0.25, "linear_element": "corotational", "distance": "depth"},
+    "boundary": {
+      "fixed": ["bottom", {"set": "x_min", "components": "x"}],
+      "prescribed": [{"nearest": [0.02, 0.02, 0.02], "displacement": [0, 0, -0.002], "ramp_time": 0.1,
+                      "ramp": "smooth", "components": "z"}],
+      "forces": [{"box": {"min": [0.04, 0, 0], "max": [0.04, 0.04, 0.02]}, "force": [0.3, 0, 0], "per": "total"}],
+      "gravity": [0, 0, -9.81],
+      "probe": {"nodes": [7], "stiffness": 20, "displacement": [0, 0.001, 0]}
+    },
+    "solver": {"kind": "explicit", "steps": 50, "safety_factor": 0.5},
+    "output": {"trajectories": [3, {"sphere": {"center": [0, 0, 0], "radius": 1e-6}}], "trajectory_interval": 5},
+    "threads": 2
+  })");
+  const auto c = parse(j, m);
+  EXPECT_EQ(c.material.neo_hookean.form, material::NeoHookeanForm::decoupled);
+  EXPECT_DOUBLE_EQ(c.material.elastic.poisson_ratio, 0.45);
+  EXPECT_DOUBLE_EQ(c.damping_alpha, 3.0);
+  EXPECT_EQ(c.partition.kind, hybrid::PartitionKind::linear_fraction);
+  EXPECT_EQ(c.partition.linear_element, ElementKind::corotational);
+  ASSERT_EQ(c.scene.constraints.size(), 3u);
+  EXPECT_EQ(c.scene.constraints[0].nodes, m.node_sets.at("bottom"));
+  EXPECT_EQ(c.scene.constraints[1].components, (std::array<bool, 3>{true, false, false}));
+  EXPECT_EQ(c.scene.constraints[2].nodes, std::vector<int>{dynamics::nearest_node(m, Eigen::Vector3d(0.02, 0.02, 0.02))});
+  EXPECT_EQ(c.scene.constraints[2].ramp.shape, dynamics::Ramp::Shape::smooth);
+  ASSERT_EQ(c.scene.loads.size(), 1u);
+  EXPECT_EQ(c.scene.loads[0].nodes, m.node_sets.at("x_max"));
+  EXPECT_NEAR(c.scene.loads[0].force_per_node.x() * c.scene.loads[0].nodes.size(), 0.3, 1e-12);
+  EXPECT_TRUE(c.scene.has_probe);
+  EXPECT_EQ(c.scene.probe.node, 7);
+  EXPECT_EQ(c.output.trajectory_nodes, (std::vector<int>{3, 0}));
+  EXPECT_EQ(c.threads, 2);
+  EXPECT_EQ(c.explicit_solver.steps, 50);
+}
+
+TEST(Config, StrictReadingNamesThePointer) {
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  auto expect_error = [&](const nlohmann::json& j, const std::string& pointer) {
+    try {
+      parse(j, m);
+      ADD_FAILURE() << "accepted " << j.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(pointer), std::string::npos) << e.what();
+    }
+  };
+  expect_error({{"mesh", "m"}, {"solver", {{"stepz", 10}}}}, "/solver/stepz");
+  expect_error({{"mesh", "m"}, {"boundary", {{"fixed", {"no_such_set"}}}}}, "/boundary/fixed/0");
+  expect_error({{"mesh", "m"}, {"boundary", {{"prescribed", {{{"set", "top"}, {"nodes", {1}}, {"displacement", {0, 0, 0}}}}}}}},
+               "/boundary/prescribed/0");
+  expect_error({{"mesh", "m"}, {"boundary", {{"fixed", {{{"sphere", {{"center", {5, 5, 5}}, {"radius", 0.1}}}}}}}}},
+               "/boundary/fixed/0");
+  expect_error({{"mesh", "m"}, {"material", {{"nu", 0.5}}}}, "/material/nu");
+  expect_error({{"mesh", "m"}, {"material", {{"model", "linear"}}}, {"partition", {{"linear_fraction", 0.5}}}}, "/partition");
+  expect_error({{"mesh", "m"}, {"solver", {{"kind", "static"}, {"steps", 10}}}}, "/solver/steps");
+  expect_error({{"mesh", "m"}, {"partition", {{"linear_fraction", 1.5}}}}, "/partition/linear_fraction");
+}
+
+TEST(Run, HybridWithZeroLinearShareIsExactlyTled) {
+  const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
+  nlohmann::json j = {{"mesh", "m"},
+                      {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -0.003}}}}}}},
+                      {"solver", {{"steps", 100}}}};
+  const auto tled = hybrid::run_dhd(m, parse(j, m));
+  j["partition"] = {{"linear_fraction", 0.0}};
+  const auto hyb = hybrid::run_dhd(m, parse(j, m));
+  EXPECT_EQ(tled.explicit_result->displacement, hyb.explicit_result->displacement);
+  j["partition"] = {{"linear_fraction", 0.5}};
+  const auto half = hybrid::run_dhd(m, parse(j, m));
+  EXPECT_NE(tled.explicit_result->displacement, half.explicit_result->displacement);
+}
+
+TEST(App, ExitCodesAndArtifact) {
+  const std::string exe = std::string(SOFTSIM_BIN_DIR) + "/dhd_sim";
+  if (!fs::exists(exe)) GTEST_SKIP() << "dhd_sim is not built";
+  Scratch s("app");
+  const auto m = cuboid(3, 3, 2, 0.03, 0.03, 0.02);
+  io::Provenance prov;
+  prov.tool = "test";
+  io::write_artifact(s.path("mesh.json"), io::kMeshSchema, io::kMeshSchemaVersion, prov, io::mesh_to_json(m));
+  const double dt_cr = dynamics::critical_time_step(m, kPaper).dt;
+  nlohmann::json cfg = {{"mesh", s.path("mesh.json")},
+                        {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -0.002}}}}}}},
+                        {"solver", {{"steps", 50}}},
+                        {"output", {{"vtu", s.path("final.vtu")}, {"vtu_interval", 25}}}};
+  write_json(s.path("ok.json"), cfg);
+  ASSERT_EQ(run_dhd_sim(s.path("ok.json"), s.path("ok_out.json")), 0);
+  const io::Artifact a = io::Artifact::read(s.path("ok_out.json"), "dhd_result", 1);
+  EXPECT_EQ(a.payload().at("displacement").size(), static_cast<std::size_t>(m.num_nodes()));
+  EXPECT_EQ(a.payload().at("element_kind").size(), static_cast<std::size_t>(m.num_tets()));
+  for (const char* f : {"final.vtu", "final_000000.vtu", "final_000025.vtu", "final_000050.vtu"})
+    EXPECT_TRUE(fs::exists(s.path(f))) << f;
+  EXPECT_EQ(a.document().at("provenance").at("inputs").size(), 1u);
+
+  cfg["output"] = nlohmann::json::object();
+  cfg["solver"] = {{"steps", 400}, {"dt", 5 * dt_cr}};
+  write_json(s.path("refused.json"), cfg);
+  EXPECT_EQ(run_dhd_sim(s.path("refused.json"), s.path("refused_out.json")), 2);
+  EXPECT_FALSE(fs::exists(s.path("refused_out.json")));
+
+  cfg["solver"]["force_dt"] = true;
+  write_json(s.path("forced.json"), cfg);
+  EXPECT_EQ(run_dhd_sim(s.path("forced.json"), s.path("forced_out.json")), 3);
+  EXPECT_FALSE(fs::exists(s.path("forced_out.json")));
+
+  cfg["solver"] = {{"kind", "static"}};
+  write_json(s.path("static.json"), cfg);
+  ASSERT_EQ(run_dhd_sim(s.path("static.json"), s.path("static_out.json")), 0);
+  const io::Artifact st = io::Artifact::read(s.path("static_out.json"), "dhd_result", 1);
+  EXPECT_EQ(st.payload().at("solver").at("kind").as_string(), "static");
+}
+
+TEST(Bench, MeasuresEveryPartitionAndThreadCount) {
+  // Structure only (timings are for bench_dhd): uniform TLED, linear, corotational and each
+  // requested linear share, for each thread count.
+  const auto m = cuboid(3, 3, 2, 0.03, 0.03, 0.02);
+  const nlohmann::json j = {{"mesh", "m"}, {"bench", {{"steps", 10}, {"threads", {1, 2}}, {"linear_fraction", {0.2, 0.5}}}}};
+  const auto runs = hybrid::run_bench(m, parse(j, m));
+  ASSERT_EQ(runs.size(), 10u);
+  std::set<std::string> names;
+  for (const auto& r : runs) {
+    names.insert(r.partition);
+    EXPECT_EQ(r.steps, 10);
+    EXPECT_GT(r.steps_per_second, 0.0);
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"all_tled", "all_linear", "all_corotational", "linear_fraction"}));
+  EXPECT_DOUBLE_EQ(runs.back().linear_fraction, 0.5);
+  EXPECT_EQ(runs.back().threads, 2);
+  EXPECT_GT(runs.back().ns_per_element[0], 0.0);
+  EXPECT_GT(runs.back().ns_per_element[1], 0.0);
+}
