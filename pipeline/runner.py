@@ -80,7 +80,16 @@ class Runner:
                 raise RunFailed(run.id, 2, f"no executable {rel(binary)} (run `make build`)")
             return file_hash(binary)
         module_file(run.target)  # a clear error when the module does not exist
-        return sha256_json([file_hash(f) for f in pipeline_import_closure(run.target)])
+        hashes = [file_hash(f) for f in pipeline_import_closure(run.target)]
+        # A python stage that drives our executables names them in TOOLS: their binaries
+        # belong to its key exactly like a tool stage's binary.
+        if run.kind == "python":
+            for tool in getattr(importlib.import_module(run.target), "TOOLS", ()):
+                binary = BIN / tool
+                if not binary.exists():
+                    raise RunFailed(run.id, 2, f"no executable {rel(binary)} (run `make build`)")
+                hashes.append(file_hash(binary))
+        return sha256_json(hashes)
 
     def _dep_outcome(self, exp, rid) -> Outcome:
         return self.outcomes[(exp.name, rid)]

@@ -18,6 +18,9 @@ Each measurement is one `dhd_sim` process (from the pipeline's bin folder) whose
 per element of each kind and the node-phase time per node. The artifact ("dhd_timing" v1) keeps
 every sample, the best and the median per partition, the element counts, the binary's sha256 and the CPU.
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("dhd_sim",)
+
 import json
 import os
 import platform

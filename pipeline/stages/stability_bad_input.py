@@ -6,6 +6,9 @@ results/stability/ so the summary can say what each executable does with bad inp
 
 Config: {"inputs": {"@MESH@": artifact, "@DATASET_X@": ..., "@FIT@": ...}}
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("mesher", "dhd_sim", "rpim_precompute", "marquardt_fit", "async_sim")
+
 import json
 import subprocess
 import tempfile

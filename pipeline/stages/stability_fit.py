@@ -21,6 +21,9 @@ Config:
   damping: [d₀], damping_max_iterations, damping_orders (fixed orders of these fits),
   damping_tight: [{"initial_damping", "max_iterations"}] (iteration limits too small on purpose)
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("marquardt_fit",)
+
 import json
 import tempfile
 from pathlib import Path

@@ -23,6 +23,9 @@ Config:
   ccx:       {"element_type": "C3D20R", "refine": 1} (hex divisions = the cuboid cells × refine)
   explicit_steps: steps of the short explicit run per ν (0: none)
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("dhd_sim",)
+
 import numpy as np
 
 from pipeline.artifacts import write_artifact

@@ -13,6 +13,9 @@ Config:
   mesh, material, damping (α, 1/s), kinds, probes: [{"name", "radius" (m, 0: one node)}],
   depth (fraction of the height), steps, static_depths (fractions), static_increments
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("dhd_sim",)
+
 import re
 
 import numpy as np

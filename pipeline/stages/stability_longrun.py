@@ -11,6 +11,9 @@ Config:
   mesh, E, nu, density, kinds: {kind: dhd material model}, push (fraction of the height),
   steps, energy_interval, damping (α, 1/s)
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("dhd_sim",)
+
 import numpy as np
 
 from pipeline.artifacts import write_artifact

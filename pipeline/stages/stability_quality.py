@@ -20,6 +20,9 @@ Config:
   meshes:      {name: tet_mesh artifact} further meshes (no shear test: not boxes)
   material, perturb, sliver, seed, shear, explicit_steps
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("dhd_sim",)
+
 import copy
 import json
 import tempfile

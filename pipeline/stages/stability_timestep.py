@@ -27,6 +27,9 @@ Config:
   auto:          {"steps": n, "compressions": [fractions of the height]}: the automatic step on the
                  small-step scene and under large ramped compressions of the top
 """
+# Executables this stage runs: part of its cache key (pipeline/runner.py).
+TOOLS = ("dhd_sim",)
+
 import numpy as np
 
 from pipeline.artifacts import write_artifact

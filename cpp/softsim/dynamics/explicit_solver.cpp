@@ -47,7 +47,10 @@ struct alignas(64) ThreadSlot {
   bool bad = false;
   std::array<double, fem::kNumElementKinds> kernel_seconds{};
   double node_seconds = 0;
+  int timed_steps = 0;
 };
+
+constexpr int kTimingStride = 8;
 
 std::string where(int step, double dt) {
   std::ostringstream s;
@@ -102,29 +105,74 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
   }
 
   element_ranges_ = elements_.balanced_ranges(opt_.threads);
+  build_schedule();
+}
+
+// Parts (one per thread) are runs of tiles of about equal cost. A node is updated by the part
+// owning its ready tile: right after that tile if all its elements belong to the part, after
+// the mid-step barrier otherwise. Per-node lists of the scene's special entries let the owner
+// do everything a node needs.
+void ExplicitSolver::build_schedule() {
   const int T = opt_.threads;
-  node_ranges_.resize(T + 1);
-  for (int p = 0; p <= T; ++p) node_ranges_[p] = static_cast<int>(static_cast<long long>(n_) * p / T);
+  const int tiles = elements_.num_tiles();
+  std::vector<double> cum(tiles + 1, 0.0);
+  for (int t = 0; t < tiles; ++t) cum[t + 1] = cum[t] + elements_.tile_cost(t);
+  tile_begin_.assign(T + 1, tiles);
+  tile_begin_[0] = 0;
+  int t = 0;
+  for (int p = 1; p < T; ++p) {
+    const double target = cum[tiles] * p / T;
+    while (t < tiles && cum[t + 1] <= target) ++t;
+    tile_begin_[p] = t;
+  }
+  special_.assign(n_, 0);
+  for (const auto& d : dofs_) special_[d.node] = 1;
+  for (const auto& l : loads_) special_[l.node] = 1;
+  for (int node : opt_.trajectory_nodes) special_[node] = 1;
+  if (scene_.has_probe) special_[scene_.probe.node] = 1;
+  std::vector<int> part_of_tile(tiles, 0);
+  for (int p = 0; p < T; ++p)
+    for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) part_of_tile[q] = p;
+  // Each list holds the plain nodes first, then the special ones (from `split` on).
+  local_begin_.assign(tiles + 1, 0);
+  local_split_.assign(tiles, 0);
+  local_nodes_.clear();
+  std::vector<std::vector<int>> deferred(T), deferred_special(T);
+  for (int q = 0; q < tiles; ++q) {
+    const int p = part_of_tile[q];
+    std::vector<int> plain, special;
+    for (const int* it = elements_.ready_nodes_begin(q); it != elements_.ready_nodes_end(q); ++it) {
+      const bool local = elements_.first_tile(*it) >= tile_begin_[p];
+      (local ? (special_[*it] ? special : plain) : (special_[*it] ? deferred_special[p] : deferred[p])).push_back(*it);
+    }
+    local_nodes_.insert(local_nodes_.end(), plain.begin(), plain.end());
+    local_split_[q] = static_cast<int>(local_nodes_.size());
+    local_nodes_.insert(local_nodes_.end(), special.begin(), special.end());
+    local_begin_[q + 1] = static_cast<int>(local_nodes_.size());
+  }
+  deferred_begin_.assign(T + 1, 0);
+  deferred_split_.assign(T, 0);
+  deferred_nodes_.clear();
+  for (int p = 0; p < T; ++p) {
+    deferred_nodes_.insert(deferred_nodes_.end(), deferred[p].begin(), deferred[p].end());
+    deferred_split_[p] = static_cast<int>(deferred_nodes_.size());
+    deferred_nodes_.insert(deferred_nodes_.end(), deferred_special[p].begin(), deferred_special[p].end());
+    deferred_begin_[p + 1] = static_cast<int>(deferred_nodes_.size());
+  }
+  // Per-node lists of special entries (sorted by node already for dofs and loads).
+  auto csr = [&](std::vector<int>& begin, auto node_of, int count) {
+    begin.assign(n_ + 1, 0);
+    for (int e = 0; e < count; ++e) ++begin[node_of(e) + 1];
+    for (int i = 0; i < n_; ++i) begin[i + 1] += begin[i];
+  };
+  csr(dof_begin_, [&](int e) { return dofs_[e].node; }, static_cast<int>(dofs_.size()));
+  csr(load_begin_, [&](int e) { return loads_[e].node; }, static_cast<int>(loads_.size()));
   trajectory_order_.resize(opt_.trajectory_nodes.size());
   for (std::size_t j = 0; j < trajectory_order_.size(); ++j) trajectory_order_[j] = static_cast<int>(j);
   std::stable_sort(trajectory_order_.begin(), trajectory_order_.end(),
                    [&](int a, int b) { return opt_.trajectory_nodes[a] < opt_.trajectory_nodes[b]; });
-  dof_ranges_.resize(T + 1);
-  load_ranges_.resize(T + 1);
-  trajectory_ranges_.resize(T + 1);
-  for (int p = 0; p <= T; ++p) {
-    const int first = node_ranges_[p];
-    dof_ranges_[p] = static_cast<int>(
-        std::lower_bound(dofs_.begin(), dofs_.end(), first, [](const ConstrainedDof& d, int v) { return d.node < v; }) -
-        dofs_.begin());
-    load_ranges_[p] = static_cast<int>(
-        std::lower_bound(loads_.begin(), loads_.end(), first, [](const LoadEntry& e, int v) { return e.node < v; }) -
-        loads_.begin());
-    trajectory_ranges_[p] = static_cast<int>(
-        std::lower_bound(trajectory_order_.begin(), trajectory_order_.end(), first,
-                         [&](int j, int v) { return opt_.trajectory_nodes[j] < v; }) -
-        trajectory_order_.begin());
-  }
+  csr(trajectory_begin_, [&](int j) { return opt_.trajectory_nodes[trajectory_order_[j]]; },
+      static_cast<int>(trajectory_order_.size()));
 }
 
 void ExplicitSolver::set_initial_state(std::vector<double> u0, std::vector<double> v0) {
@@ -134,48 +182,61 @@ void ExplicitSolver::set_initial_state(std::vector<double> u0, std::vector<doubl
   v0_ = std::move(v0);
 }
 
-// Gather, central-difference update (000 eq. 33) and the scene's special nodes, for the nodes
-// of range `part`. Everything a node needs is done by the thread owning its range.
-void ExplicitSolver::node_phase(int part, int step, const double* up, const double* uc, double* un, bool& bad) {
+// Gather and central-difference update (000 eq. 33) of node i; `check` turns NaN as soon as a
+// value is not finite.
+template <bool kGravity>
+inline void ExplicitSolver::update_node(int i, const double* up, const double* uc, double* un, double& check) const {
+  double f[3];
+  elements_.gather(i, f);
+  const double a = A_[i], b = B_[i], c = C_[i];
+  double x = b * uc[3 * i] - c * up[3 * i] - a * f[0];
+  double y = b * uc[3 * i + 1] - c * up[3 * i + 1] - a * f[1];
+  double z = b * uc[3 * i + 2] - c * up[3 * i + 2] - a * f[2];
+  if (kGravity) {
+    const double am = Am_[i];
+    x += am * scene_.gravity.x();
+    y += am * scene_.gravity.y();
+    z += am * scene_.gravity.z();
+  }
+  un[3 * i] = x;
+  un[3 * i + 1] = y;
+  un[3 * i + 2] = z;
+  check += (x - x) + (y - y) + (z - z);
+}
+
+// Nodes list[begin, split) are plain, list[split, end) special.
+template <bool kGravity>
+void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
+                                  const double* uc, double* un, double& check) {
+  for (int k = begin; k < split; ++k) update_node<kGravity>(list[k], up, uc, un, check);
+  for (int k = split; k < end; ++k) {
+    update_node<kGravity>(list[k], up, uc, un, check);
+    update_special(list[k], step, up, uc, un);
+  }
+}
+
+void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
+                                  const double* uc, double* un, double& check) {
+  if (gravity_) update_nodes<true>(list, begin, split, end, step, up, uc, un, check);
+  else update_nodes<false>(list, begin, split, end, step, up, uc, un, check);
+}
+
+// Loads, probe, constraints, work booking and trajectory samples of node i, after its update.
+void ExplicitSolver::update_special(int i, int step, const double* up, const double* uc, double* un) {
   const double dt = opt_.dt;
   const double t = step * dt;
-  const int nb = node_ranges_[part], ne = node_ranges_[part + 1];
-  const double gx = scene_.gravity.x(), gy = scene_.gravity.y(), gz = scene_.gravity.z();
-  double check = 0.0;
-  for (int i = nb; i < ne; ++i) {
-    double f[3];
-    elements_.gather(i, f);
-    const double a = A_[i], b = B_[i], c = C_[i];
-    double x = b * uc[3 * i] - c * up[3 * i] - a * f[0];
-    double y = b * uc[3 * i + 1] - c * up[3 * i + 1] - a * f[1];
-    double z = b * uc[3 * i + 2] - c * up[3 * i + 2] - a * f[2];
-    if (gravity_) {
-      const double am = Am_[i];
-      x += am * gx;
-      y += am * gy;
-      z += am * gz;
-    }
-    un[3 * i] = x;
-    un[3 * i + 1] = y;
-    un[3 * i + 2] = z;
-    check += (x - x) + (y - y) + (z - z);  // NaN as soon as any value is not finite
-  }
-  if (!(check == 0.0)) bad = true;
-
   // Nodal loads: R enters eq. 33 as + A R.
-  const int l_end = load_ranges_[part + 1];
-  for (int e = load_ranges_[part]; e < l_end; ++e) {
+  for (int e = load_begin_[i]; e < load_begin_[i + 1]; ++e) {
     const LoadEntry& le = loads_[e];
     const NodalLoad& load = scene_.loads[le.load];
     const double r = load.ramp.at(t);
     for (int k = 0; k < 3; ++k)
-      if (le.free[k]) un[3 * le.node + k] += A_[le.node] * r * load.force_per_node[k];
+      if (le.free[k]) un[3 * i + k] += A_[i] * r * load.force_per_node[k];
   }
   // The probe spring pulls its node towards the tool tip.
+  const bool probe_here = scene_.has_probe && scene_.probe.node == i;
   Eigen::Vector3d probe_force = Eigen::Vector3d::Zero();
-  const bool probe_here = scene_.has_probe && scene_.probe.node >= nb && scene_.probe.node < ne;
   if (probe_here) {
-    const int i = scene_.probe.node;
     const Eigen::Vector3d ui(uc[3 * i], uc[3 * i + 1], uc[3 * i + 2]);
     probe_force = scene_.probe.stiffness * (scene_.probe.displacement * scene_.probe.ramp.at(t) - ui);
     for (int k = 0; k < 3; ++k)
@@ -186,16 +247,15 @@ void ExplicitSolver::node_phase(int part, int step, const double* up, const doub
   // Constraints overwrite. External work is booked on [t − Δt, t] with the trapezoidal rule,
   // ½ (f(t − Δt) + f(t)) · (u(t) − u(t − Δt)), the form the central-difference energy balance
   // takes; a moving constraint's force is the one that produces its motion, M a + D v + F.
-  const int d_end = dof_ranges_[part + 1];
   const double alpha = opt_.damping_alpha;
-  for (int e = dof_ranges_[part]; e < d_end; ++e) {
+  for (int e = dof_begin_[i]; e < dof_begin_[i + 1]; ++e) {
     const ConstrainedDof& d = dofs_[e];
-    const int q = 3 * d.node + d.component;
+    const int q = 3 * i + d.component;
     const double value = d.value * scene_.constraints[d.constraint].ramp.at(t + dt);
     if (moving_[d.constraint]) {
       double f[3];
-      elements_.gather(d.node, f);
-      const double m = mass_[d.node];
+      elements_.gather(i, f);
+      const double m = mass_[i];
       const double total =
           m * (value - 2.0 * uc[q] + up[q]) / (dt * dt) + alpha * m * (value - up[q]) / (2.0 * dt) + f[d.component];
       if (step > 0) dof_work_[e] += 0.5 * (dof_force_[e] + total) * (uc[q] - up[q]);
@@ -203,19 +263,17 @@ void ExplicitSolver::node_phase(int part, int step, const double* up, const doub
     }
     un[q] = value;
   }
-  if (step > 0) {
-    for (int e = load_ranges_[part]; e < l_end; ++e) {
+  if (step > 0)
+    for (int e = load_begin_[i]; e < load_begin_[i + 1]; ++e) {
       const LoadEntry& le = loads_[e];
       const NodalLoad& load = scene_.loads[le.load];
       const double r = 0.5 * (load.ramp.at(t - dt) + load.ramp.at(t));
       double w = 0;
       for (int k = 0; k < 3; ++k)
-        if (le.free[k]) w += r * load.force_per_node[k] * (uc[3 * le.node + k] - up[3 * le.node + k]);
+        if (le.free[k]) w += r * load.force_per_node[k] * (uc[3 * i + k] - up[3 * i + k]);
       load_work_[e] += w;
     }
-  }
   if (probe_here) {
-    const int i = scene_.probe.node;
     if (step > 0)
       for (int k = 0; k < 3; ++k)
         if (probe_free_[k]) probe_work_ += 0.5 * (probe_previous_[k] + probe_force[k]) * (uc[3 * i + k] - up[3 * i + k]);
@@ -223,11 +281,8 @@ void ExplicitSolver::node_phase(int part, int step, const double* up, const doub
   }
   if (trajectories_ && (step + 1) % opt_.trajectory_interval == 0) {
     const int sample = (step + 1) / opt_.trajectory_interval;
-    for (int j = trajectory_ranges_[part]; j < trajectory_ranges_[part + 1]; ++j) {
-      const int jj = trajectory_order_[j];
-      const int i = opt_.trajectory_nodes[jj];
-      (*trajectories_)[jj][sample] = Eigen::Vector3d(un[3 * i], un[3 * i + 1], un[3 * i + 2]);
-    }
+    for (int j = trajectory_begin_[i]; j < trajectory_begin_[i + 1]; ++j)
+      (*trajectories_)[trajectory_order_[j]][sample] = Eigen::Vector3d(un[3 * i], un[3 * i + 1], un[3 * i + 2]);
   }
 }
 
@@ -390,9 +445,18 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
         const double* up = buf[s % 3].data();
         const double* uc = buf[(s + 1) % 3].data();
         double* un = buf[(s + 2) % 3].data();
+        // Timing is sampled on one step in kTimingStride to keep clock reads out of the loop.
+        const bool timed = s % kTimingStride == 0;
+        if (timed) ++me.timed_steps;
         fem::KernelStats st;
+        double check = 0.0;
         for (int p = tid; p < T; p += nthreads)
-          elements_.compute(uc, element_ranges_[p], element_ranges_[p + 1], st, me.kernel_seconds.data());
+          for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) {
+            elements_.compute_tile(uc, q, st, timed ? me.kernel_seconds.data() : nullptr);
+            const auto t0 = timed ? Clock::now() : Clock::time_point();
+            update_nodes(local_nodes_.data(), local_begin_[q], local_split_[q], local_begin_[q + 1], s, up, uc, un, check);
+            if (timed) me.node_seconds += seconds_since(t0);
+          }
         me.min_j = st.min_j;
         barrier();
         double gmin = 1e300;
@@ -404,11 +468,12 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
           }
           break;
         }
-        const auto t0 = Clock::now();
-        bool bad = false;
-        for (int p = tid; p < T; p += nthreads) node_phase(p, s, up, uc, un, bad);
-        me.bad = bad;
-        me.node_seconds += seconds_since(t0);
+        const auto t0 = timed ? Clock::now() : Clock::time_point();
+        for (int p = tid; p < T; p += nthreads)
+          update_nodes(deferred_nodes_.data(), deferred_begin_[p], deferred_split_[p], deferred_begin_[p + 1], s, up,
+                       uc, un, check);
+        if (timed) me.node_seconds += seconds_since(t0);
+        me.bad = !(check == 0.0);
         barrier();
         bool any_bad = false;
         for (int q = 0; q < nthreads; ++q) any_bad = any_bad || slots[q].bad;
@@ -513,9 +578,13 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
   tm.threads = T;
   tm.wall_seconds = loop_seconds;
   tm.steps_per_second = loop_seconds > 0 ? opt_.steps / loop_seconds : 0;
+  // Sampled timings scaled to all steps.
+  int timed = 0;
+  for (const auto& s : slots) timed = std::max(timed, s.timed_steps);
+  const double scale = timed > 0 ? static_cast<double>(opt_.steps) / timed : 0.0;
   for (const auto& s : slots) {
-    for (int k = 0; k < fem::kNumElementKinds; ++k) tm.kernel_seconds[k] += s.kernel_seconds[k];
-    tm.node_seconds += s.node_seconds;
+    for (int k = 0; k < fem::kNumElementKinds; ++k) tm.kernel_seconds[k] += scale * s.kernel_seconds[k];
+    tm.node_seconds += scale * s.node_seconds;
   }
   for (int k = 0; k < fem::kNumElementKinds; ++k) tm.element_counts[k] = elements_.count(static_cast<fem::ElementKind>(k));
   tm.sample_seconds = sample_seconds;

@@ -89,7 +89,15 @@ class ExplicitSolver {
     std::array<bool, 3> free;
   };
 
-  void node_phase(int part, int step, const double* up, const double* uc, double* un, bool& bad);
+  void build_schedule();
+  template <bool kGravity>
+  void update_node(int i, const double* up, const double* uc, double* un, double& check) const;
+  template <bool kGravity>
+  void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
+                    double* un, double& check);
+  void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
+                    double* un, double& check);
+  void update_special(int i, int step, const double* up, const double* uc, double* un);
   EnergySample sample_energy(int n_done, const double* u_before, const double* u_mid, const double* u_after,
                              double& bound_kinetic, double& min_j, int& min_j_element);
   double external_work() const;
@@ -104,8 +112,12 @@ class ExplicitSolver {
   std::vector<ConstrainedDof> dofs_;
   std::vector<char> moving_;  // per constraint: prescribed value non-zero and ramped
   std::vector<LoadEntry> loads_;
-  std::vector<int> node_ranges_, element_ranges_;
-  std::vector<int> dof_ranges_, load_ranges_, trajectory_ranges_;  // per part: first entry
+  std::vector<int> element_ranges_;                    // per part, for the energy samples
+  std::vector<int> tile_begin_;                        // per part: first tile
+  std::vector<int> local_begin_, local_split_, local_nodes_;        // per tile: nodes updated right after it
+  std::vector<int> deferred_begin_, deferred_split_, deferred_nodes_;  // per part: nodes updated after the barrier
+  std::vector<char> special_;                          // per node: has constraints, loads, ...
+  std::vector<int> dof_begin_, load_begin_, trajectory_begin_;  // per node: its special entries
   std::vector<int> trajectory_order_;  // trajectory entries sorted by node
   std::vector<double> dof_work_, load_work_;
   std::vector<double> dof_force_;  // force of each moving constrained dof at the previous step

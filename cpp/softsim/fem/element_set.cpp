@@ -2,277 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <stdexcept>
 
-#include "softsim/fem/cube_root.hpp"
+#include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_response.hpp"
-#include "softsim/material/polar_decomposition.hpp"
-
-#if defined(SOFTSIM_HAVE_OPENMP)
-#define SOFTSIM_SIMD_MINMAX _Pragma("omp simd reduction(min : jmin) reduction(max : jmax)")
-#define SOFTSIM_SIMD _Pragma("omp simd")
-#define SOFTSIM_SIMD_MINMAX_WORST \
-  _Pragma("omp simd reduction(min : jmin) reduction(max : jmax) reduction(max : worst)")
-#else
-#define SOFTSIM_SIMD_MINMAX_WORST
-#define SOFTSIM_SIMD_MINMAX
-#define SOFTSIM_SIMD
-#endif
 
 namespace softsim::fem {
 
 namespace {
-
-// Raw views of the structure-of-arrays data handed to the kernels.
-struct Soa {
-  const int* __restrict n0;
-  const int* __restrict n1;
-  const int* __restrict n2;
-  const int* __restrict n3;
-  const double* __restrict g[9];
-  const double* __restrict vol;
-  double* __restrict out;
-  int stride;
-};
-
-// Loads the corner displacements relative to corner 0 and forms H = Σ_b (u_b − u_0) ⊗ ∇N_b
-// (the displacement gradient, 000 eq. 9 with ∇N from eq. 22). Shared by every kernel.
-#define SOFTSIM_LOAD_H(s, u, k)                                                           \
-  const int a0 = s.n0[k], a1 = s.n1[k], a2 = s.n2[k], a3 = s.n3[k];                       \
-  const double u0x = u[a0], u0y = u[a0 + 1], u0z = u[a0 + 2];                             \
-  const double d1x = u[a1] - u0x, d1y = u[a1 + 1] - u0y, d1z = u[a1 + 2] - u0z;           \
-  const double d2x = u[a2] - u0x, d2y = u[a2 + 1] - u0y, d2z = u[a2 + 2] - u0z;           \
-  const double d3x = u[a3] - u0x, d3y = u[a3 + 1] - u0y, d3z = u[a3 + 2] - u0z;           \
-  const double g1x = s.g[0][k], g1y = s.g[1][k], g1z = s.g[2][k];                         \
-  const double g2x = s.g[3][k], g2y = s.g[4][k], g2z = s.g[5][k];                         \
-  const double g3x = s.g[6][k], g3y = s.g[7][k], g3z = s.g[8][k];                         \
-  const double h00 = d1x * g1x + d2x * g2x + d3x * g3x;                                   \
-  const double h01 = d1x * g1y + d2x * g2y + d3x * g3y;                                   \
-  const double h02 = d1x * g1z + d2x * g2z + d3x * g3z;                                   \
-  const double h10 = d1y * g1x + d2y * g2x + d3y * g3x;                                   \
-  const double h11 = d1y * g1y + d2y * g2y + d3y * g3y;                                   \
-  const double h12 = d1y * g1z + d2y * g2z + d3y * g3z;                                   \
-  const double h20 = d1z * g1x + d2z * g2x + d3z * g3x;                                   \
-  const double h21 = d1z * g1y + d2z * g2y + d3z * g3y;                                   \
-  const double h22 = d1z * g1z + d2z * g2z + d3z * g3z;
-
-// Corner forces f_a = M ∇N_a for a stress-like matrix M already scaled by ⁰V; corner 0 takes
-// minus the sum (the gradients sum to zero).
-#define SOFTSIM_STORE_FORCES(s, k, m00, m01, m02, m10, m11, m12, m20, m21, m22)             \
-  {                                                                                         \
-    const double M00 = (m00), M01 = (m01), M02 = (m02), M10 = (m10), M11 = (m11);           \
-    const double M12 = (m12), M20 = (m20), M21 = (m21), M22 = (m22);                        \
-    const double f1x = M00 * g1x + M01 * g1y + M02 * g1z;                                   \
-    const double f1y = M10 * g1x + M11 * g1y + M12 * g1z;                                   \
-    const double f1z = M20 * g1x + M21 * g1y + M22 * g1z;                                   \
-    const double f2x = M00 * g2x + M01 * g2y + M02 * g2z;                                   \
-    const double f2y = M10 * g2x + M11 * g2y + M12 * g2z;                                   \
-    const double f2z = M20 * g2x + M21 * g2y + M22 * g2z;                                   \
-    const double f3x = M00 * g3x + M01 * g3y + M02 * g3z;                                   \
-    const double f3y = M10 * g3x + M11 * g3y + M12 * g3z;                                   \
-    const double f3z = M20 * g3x + M21 * g3y + M22 * g3z;                                   \
-    double* __restrict o = s.out + k;                                                       \
-    const int S = s.stride;                                                                 \
-    o[0] = -(f1x + f2x + f3x);                                                              \
-    o[S] = -(f1y + f2y + f3y);                                                              \
-    o[2 * S] = -(f1z + f2z + f3z);                                                          \
-    o[3 * S] = f1x;                                                                         \
-    o[4 * S] = f1y;                                                                         \
-    o[5 * S] = f1z;                                                                         \
-    o[6 * S] = f2x;                                                                         \
-    o[7 * S] = f2y;                                                                         \
-    o[8 * S] = f2z;                                                                         \
-    o[9 * S] = f3x;                                                                         \
-    o[10 * S] = f3y;                                                                        \
-    o[11 * S] = f3z;                                                                        \
-  }
-
-// Small-strain element: ⁰V σ(ε) ∇N with ε = sym H (000 eqs. 9–12). Linear in u: the same as
-// the precomputed 12 × 12 block Kₑ times the corner displacements, without storing Kₑ.
-void linear_kernel(const Soa s, const double* __restrict u, int begin, int end, double mu, double lambda) {
-  SOFTSIM_SIMD
-  for (int k = begin; k < end; ++k) {
-    SOFTSIM_LOAD_H(s, u, k)
-    const double V = s.vol[k];
-    const double vmu = V * mu;
-    const double vl_tr = V * lambda * (h00 + h11 + h22);
-    const double s00 = 2.0 * vmu * h00 + vl_tr, s11 = 2.0 * vmu * h11 + vl_tr, s22 = 2.0 * vmu * h22 + vl_tr;
-    const double s01 = vmu * (h01 + h10), s02 = vmu * (h02 + h20), s12 = vmu * (h12 + h21);
-    SOFTSIM_STORE_FORCES(s, k, s00, s01, s02, s01, s11, s12, s02, s12, s22)
-  }
-}
-
-// F = I + H and its cofactor matrix cof F = J F⁻ᵀ.
-#define SOFTSIM_F_AND_COFACTOR                                                  \
-  const double f00 = 1.0 + h00, f01 = h01, f02 = h02;                           \
-  const double f10 = h10, f11 = 1.0 + h11, f12 = h12;                           \
-  const double f20 = h20, f21 = h21, f22 = 1.0 + h22;                           \
-  const double c00 = f11 * f22 - f12 * f21, c01 = f12 * f20 - f10 * f22;        \
-  const double c02 = f10 * f21 - f11 * f20, c10 = f02 * f21 - f01 * f22;        \
-  const double c11 = f00 * f22 - f02 * f20, c12 = f01 * f20 - f00 * f21;        \
-  const double c20 = f01 * f12 - f02 * f11, c21 = f02 * f10 - f00 * f12;        \
-  const double c22 = f00 * f11 - f01 * f10;                                     \
-  const double J = f00 * c00 + f01 * c01 + f02 * c02;
-
-// TLED, paper form: S = μ(I − C⁻¹) + λJ(J − 1)C⁻¹ (000 eq. 14), used as P = F S
-// = μ F + (λ(J − 1) − μ/J) cof F, and nodal forces ⁰V P ∇N (= ⁰V B_Lᵀ Ŝ of 000 eq. 13).
-void tled_paper_kernel(const Soa s, const double* __restrict u, int begin, int end, double mu,
-                       double lambda, double& min_j, double& max_j) {
-  double jmin = min_j, jmax = max_j;
-  SOFTSIM_SIMD_MINMAX
-  for (int k = begin; k < end; ++k) {
-    SOFTSIM_LOAD_H(s, u, k)
-    SOFTSIM_F_AND_COFACTOR
-    jmin = std::min(jmin, J);
-    jmax = std::max(jmax, J);
-    const double V = s.vol[k];
-    const double cf = V * mu;
-    const double cc = V * (lambda * (J - 1.0) - mu / J);
-    SOFTSIM_STORE_FORCES(s, k, cf * f00 + cc * c00, cf * f01 + cc * c01, cf * f02 + cc * c02,
-                         cf * f10 + cc * c10, cf * f11 + cc * c11, cf * f12 + cc * c12,
-                         cf * f20 + cc * c20, cf * f21 + cc * c21, cf * f22 + cc * c22)
-  }
-  min_j = jmin;
-  max_j = jmax;
-}
-
-// TLED, decoupled form (Miller et al. 2007): S = μJ^(−2/3)(I − I₁/3 C⁻¹) + KJ(J − 1)C⁻¹, as
-// P = μ J^(−2/3) F + (K(J − 1) − μ J^(−2/3) I₁ / (3J)) cof F.
-template <bool kExactRoot>
-void tled_decoupled_body(const Soa& s, const double* __restrict u, int k, double mu, double bulk,
-                         double& J_out) {
-  SOFTSIM_LOAD_H(s, u, k)
-  SOFTSIM_F_AND_COFACTOR
-  J_out = J;
-  const double x = kExactRoot ? 1.0 / std::cbrt(J) : inv_cbrt_newton(J);  // J^(−1/3)
-  const double a = x * x;                                                   // J^(−2/3)
-  const double inv_j = kExactRoot ? 1.0 / J : a * x;
-  const double I1 = f00 * f00 + f01 * f01 + f02 * f02 + f10 * f10 + f11 * f11 + f12 * f12 +
-                    f20 * f20 + f21 * f21 + f22 * f22;
-  const double V = s.vol[k];
-  const double cf = V * mu * a;
-  const double cc = V * (bulk * (J - 1.0) - mu * a * I1 * inv_j * (1.0 / 3.0));
-  SOFTSIM_STORE_FORCES(s, k, cf * f00 + cc * c00, cf * f01 + cc * c01, cf * f02 + cc * c02,
-                       cf * f10 + cc * c10, cf * f11 + cc * c11, cf * f12 + cc * c12,
-                       cf * f20 + cc * c20, cf * f21 + cc * c21, cf * f22 + cc * c22)
-}
-
-void tled_decoupled_kernel(const Soa s, const double* __restrict u, int begin, int end, double mu,
-                           double bulk, double* __restrict volume_ratio, double& min_j, double& max_j) {
-  double jmin = min_j, jmax = max_j;
-  SOFTSIM_SIMD_MINMAX
-  for (int k = begin; k < end; ++k) {
-    double J;
-    tled_decoupled_body<false>(s, u, k, mu, bulk, J);
-    volume_ratio[k] = J;
-    jmin = std::min(jmin, J);
-    jmax = std::max(jmax, J);
-  }
-  // Elements whose J lies outside the range where the Newton root is exact are recomputed
-  // with the library root; the choice depends on the element alone, so it is deterministic.
-  if (jmin < kInvCbrtMinJ || jmax > kInvCbrtMaxJ) {
-    for (int k = begin; k < end; ++k) {
-      const double J = volume_ratio[k];  // as the vectorised loop saw it
-      if (J > 0 && (J < kInvCbrtMinJ || J > kInvCbrtMaxJ)) {
-        double unused;
-        tled_decoupled_body<true>(s, u, k, mu, bulk, unused);
-      }
-    }
-  }
-  min_j = jmin;
-  max_j = jmax;
-}
-
-// Corotational: F = R S, forces R Kₑ (Rᵀx − X) = ⁰V R σ(S − I) ∇N (see material/small_strain.hpp),
-// one element at a time with the polar decomposition iterated to convergence.
-void corotational_exact(const Soa& s, const double* __restrict u, int k, double mu, double lambda) {
-  SOFTSIM_LOAD_H(s, u, k)
-  SOFTSIM_F_AND_COFACTOR
-  (void)c10, (void)c11, (void)c12, (void)c20, (void)c21, (void)c22;
-  double m[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-  if (J > 0) {
-    Eigen::Matrix3d F;
-    F << f00, f01, f02, f10, f11, f12, f20, f21, f22;
-    const material::Polar p = material::polar_decomposition(F);
-    const double e00 = p.S(0, 0) - 1.0, e11 = p.S(1, 1) - 1.0, e22 = p.S(2, 2) - 1.0;
-    const double V = s.vol[k];
-    const double tr = lambda * (e00 + e11 + e22);
-    Eigen::Matrix3d sig;
-    sig << 2.0 * mu * e00 + tr, 2.0 * mu * p.S(0, 1), 2.0 * mu * p.S(0, 2),  //
-        2.0 * mu * p.S(1, 0), 2.0 * mu * e11 + tr, 2.0 * mu * p.S(1, 2),     //
-        2.0 * mu * p.S(2, 0), 2.0 * mu * p.S(2, 1), 2.0 * mu * e22 + tr;
-    const Eigen::Matrix3d P = V * (p.R * sig);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) m[3 * i + j] = P(i, j);
-  }
-  SOFTSIM_STORE_FORCES(s, k, m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8])
-}
-
-// The same, vectorised: a fixed number of Higham iterations (enough for strains of a few tens
-// of per cent); the size of the last update is kept per element, and any element whose
-// iteration had not converged (or that is inverted) is recomputed by corotational_exact. The
-// choice is made from the stored value of that element alone, so it is deterministic.
-constexpr int kPolarIterations = 6;
-constexpr double kPolarConverged = 1e-20;  // squared size of the last update
-
-void corotational_kernel(const Soa s, const double* __restrict u, int begin, int end, double mu,
-                         double lambda, double* __restrict last_update, double& min_j, double& max_j) {
-  double jmin = min_j, jmax = max_j, worst = 0.0;
-  SOFTSIM_SIMD_MINMAX_WORST
-  for (int k = begin; k < end; ++k) {
-    SOFTSIM_LOAD_H(s, u, k)
-    SOFTSIM_F_AND_COFACTOR
-    (void)c10, (void)c11, (void)c12, (void)c20, (void)c21, (void)c22;
-    jmin = std::min(jmin, J);
-    jmax = std::max(jmax, J);
-    // Newton iteration X ← (γ X + X⁻ᵀ/γ)/2 from X = F with determinant scaling γ = |det X|^(−1/3)
-    // (Byers & Xu) until the update is small; no library call, so the loop vectorises.
-    double x00 = f00, x01 = f01, x02 = f02, x10 = f10, x11 = f11, x12 = f12, x20 = f20, x21 = f21, x22 = f22;
-    double change = 1.0;
-#pragma GCC unroll 8
-    for (int it = 0; it < kPolarIterations; ++it) {
-      const double y00 = x11 * x22 - x12 * x21, y01 = x12 * x20 - x10 * x22, y02 = x10 * x21 - x11 * x20;
-      const double y10 = x02 * x21 - x01 * x22, y11 = x00 * x22 - x02 * x20, y12 = x01 * x20 - x00 * x21;
-      const double y20 = x01 * x12 - x02 * x11, y21 = x02 * x10 - x00 * x12, y22 = x00 * x11 - x01 * x10;
-      const double det = x00 * y00 + x01 * y01 + x02 * y02;
-      const double inv = 1.0 / det;
-      const double g = change < 1e-4 ? 1.0 : inv_cbrt_newton(std::abs(det));
-      const double a = 0.5 * g, b = 0.5 * inv / g;
-      const double n00 = a * x00 + b * y00, n01 = a * x01 + b * y01, n02 = a * x02 + b * y02;
-      const double n10 = a * x10 + b * y10, n11 = a * x11 + b * y11, n12 = a * x12 + b * y12;
-      const double n20 = a * x20 + b * y20, n21 = a * x21 + b * y21, n22 = a * x22 + b * y22;
-      change = (n00 - x00) * (n00 - x00) + (n01 - x01) * (n01 - x01) + (n02 - x02) * (n02 - x02) +
-               (n10 - x10) * (n10 - x10) + (n11 - x11) * (n11 - x11) + (n12 - x12) * (n12 - x12) +
-               (n20 - x20) * (n20 - x20) + (n21 - x21) * (n21 - x21) + (n22 - x22) * (n22 - x22);
-      x00 = n00, x01 = n01, x02 = n02, x10 = n10, x11 = n11, x12 = n12, x20 = n20, x21 = n21, x22 = n22;
-    }
-    const double flag = J > 0 ? change : 1.0;
-    last_update[k] = flag;
-    worst = std::max(worst, flag);
-    // S = Rᵀ F (symmetrised), σ = 2μ (S − I) + λ tr(S − I) I, ⁰V P = ⁰V R σ.
-    const double s00 = x00 * f00 + x10 * f10 + x20 * f20 - 1.0;
-    const double s11 = x01 * f01 + x11 * f11 + x21 * f21 - 1.0;
-    const double s22 = x02 * f02 + x12 * f12 + x22 * f22 - 1.0;
-    const double s01 = 0.5 * ((x00 * f01 + x10 * f11 + x20 * f21) + (x01 * f00 + x11 * f10 + x21 * f20));
-    const double s02 = 0.5 * ((x00 * f02 + x10 * f12 + x20 * f22) + (x02 * f00 + x12 * f10 + x22 * f20));
-    const double s12 = 0.5 * ((x01 * f02 + x11 * f12 + x21 * f22) + (x02 * f01 + x12 * f11 + x22 * f21));
-    const double V = s.vol[k];
-    const double vmu2 = 2.0 * V * mu, vl_tr = V * lambda * (s00 + s11 + s22);
-    const double t00 = vmu2 * s00 + vl_tr, t11 = vmu2 * s11 + vl_tr, t22 = vmu2 * s22 + vl_tr;
-    const double t01 = vmu2 * s01, t02 = vmu2 * s02, t12 = vmu2 * s12;
-    SOFTSIM_STORE_FORCES(s, k, x00 * t00 + x01 * t01 + x02 * t02, x00 * t01 + x01 * t11 + x02 * t12,
-                         x00 * t02 + x01 * t12 + x02 * t22, x10 * t00 + x11 * t01 + x12 * t02,
-                         x10 * t01 + x11 * t11 + x12 * t12, x10 * t02 + x11 * t12 + x12 * t22,
-                         x20 * t00 + x21 * t01 + x22 * t02, x20 * t01 + x21 * t11 + x22 * t12,
-                         x20 * t02 + x21 * t12 + x22 * t22)
-  }
-  if (!(worst <= kPolarConverged))
-    for (int k = begin; k < end; ++k)
-      if (!(last_update[k] <= kPolarConverged)) corotational_exact(s, u, k, mu, lambda);
-  min_j = jmin;
-  max_j = jmax;
-}
 
 int round_up(int n, int b) { return (n + b - 1) / b * b; }
 
@@ -288,10 +25,15 @@ double ElementSet::relative_cost(ElementKind kind) {
 }
 
 ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds,
-                       const Material& material)
+                       const Material& material, int tile_nodes)
     : num_nodes_(mesh.num_nodes()), material_(material), kinds_(kinds) {
   if (static_cast<int>(kinds.size()) != mesh.num_tets())
     throw std::invalid_argument("ElementSet: one kind per element is required");
+  // An element's tile key: its highest node index. Inside a group elements are sorted by it, so
+  // that a sweep over the nodes meets the elements in order (see build_tiles).
+  std::vector<int> key(mesh.num_tets());
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    key[e] = *std::max_element(mesh.tets[e].begin(), mesh.tets[e].end());
   // Groups in a fixed kind order, each padded to a block multiple.
   int slot = 0;
   for (int kk = 0; kk < kNumElementKinds; ++kk) {
@@ -305,6 +47,7 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
         ++g.count;
       }
     if (g.count == 0) continue;  // a kind the scene does not have costs nothing
+    std::stable_sort(original_.begin() + g.begin, original_.end(), [&](int a, int b) { return key[a] < key[b]; });
     slot = round_up(g.begin + g.count, kBlock);
     original_.resize(slot, -1);
     g.end = slot;
@@ -342,6 +85,82 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
     if (e < 0) continue;
     for (int a = 0; a < 4; ++a) incidence_[fill[mesh.tets[e][a]]++] = 3 * a * stride_ + i;
   }
+  build_tiles(key, std::max(tile_nodes, 1));
+}
+
+void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
+  num_tiles_ = std::max(1, (num_nodes_ + tile_nodes - 1) / tile_nodes);
+  const int G = static_cast<int>(groups_.size());
+  tile_blocks_.assign(static_cast<std::size_t>(num_tiles_) * G, {0, 0});
+  std::vector<int> slot_tile(stride_, 0);
+  for (int gi = 0; gi < G; ++gi) {
+    const Group& g = groups_[gi];
+    int tile = 0;
+    tile_blocks_[gi] = {g.begin, g.begin};
+    for (int b = g.begin; b < g.end; b += kBlock) {
+      int block_key = 0;
+      for (int i = b; i < b + kBlock; ++i)
+        if (original_[i] >= 0) block_key = std::max(block_key, key[original_[i]]);
+      // Keys are sorted inside the group, so the tiles of consecutive blocks never decrease.
+      const int t = std::max(tile, std::min(block_key / tile_nodes, num_tiles_ - 1));
+      for (; tile < t; ++tile) {
+        const int end = tile_blocks_[static_cast<std::size_t>(tile) * G + gi].second;
+        tile_blocks_[static_cast<std::size_t>(tile + 1) * G + gi] = {end, end};
+      }
+      tile_blocks_[static_cast<std::size_t>(tile) * G + gi].second = b + kBlock;
+      for (int i = b; i < b + kBlock; ++i) slot_tile[i] = tile;
+    }
+    for (; tile + 1 < num_tiles_; ++tile) {
+      const int end = tile_blocks_[static_cast<std::size_t>(tile) * G + gi].second;
+      tile_blocks_[static_cast<std::size_t>(tile + 1) * G + gi] = {end, end};
+    }
+  }
+  // A node is ready once the last tile holding one of its elements is done.
+  ready_tile_.assign(num_nodes_, 0);
+  first_tile_.assign(num_nodes_, 0);
+  for (int n = 0; n < num_nodes_; ++n) {
+    int lo = num_tiles_, hi = 0;
+    for (int p = incidence_begin_[n]; p < incidence_begin_[n + 1]; ++p) {
+      const int t = slot_tile[incidence_[p] % stride_];
+      lo = std::min(lo, t);
+      hi = std::max(hi, t);
+    }
+    if (lo > hi) lo = hi = 0;  // a node without elements
+    first_tile_[n] = lo;
+    ready_tile_[n] = hi;
+  }
+  ready_begin_.assign(num_tiles_ + 1, 0);
+  for (int n = 0; n < num_nodes_; ++n) ++ready_begin_[ready_tile_[n] + 1];
+  for (int t = 0; t < num_tiles_; ++t) ready_begin_[t + 1] += ready_begin_[t];
+  ready_nodes_.resize(num_nodes_);
+  std::vector<int> fill(ready_begin_.begin(), ready_begin_.end() - 1);
+  for (int n = 0; n < num_nodes_; ++n) ready_nodes_[fill[ready_tile_[n]]++] = n;
+}
+
+void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, double* seconds) {
+  const int G = static_cast<int>(groups_.size());
+  for (int gi = 0; gi < G; ++gi) {
+    const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
+    if (b >= e) continue;
+    if (seconds) {
+      const auto t0 = std::chrono::steady_clock::now();
+      compute_group(groups_[gi], u, b, e, stats);
+      seconds[static_cast<int>(groups_[gi].kind)] +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    } else {
+      compute_group(groups_[gi], u, b, e, stats);
+    }
+  }
+}
+
+double ElementSet::tile_cost(int tile) const {
+  const int G = static_cast<int>(groups_.size());
+  double c = kNodeCost * (ready_begin_[tile + 1] - ready_begin_[tile]);
+  for (int gi = 0; gi < G; ++gi) {
+    const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
+    c += relative_cost(groups_[gi].kind) * (e - b);
+  }
+  return c;
 }
 
 int ElementSet::count(ElementKind kind) const {
@@ -351,23 +170,23 @@ int ElementSet::count(ElementKind kind) const {
 }
 
 void ElementSet::compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats) {
-  Soa s{node_offset_[0].data(), node_offset_[1].data(), node_offset_[2].data(), node_offset_[3].data(),
+  kernels::SoaView s{node_offset_[0].data(), node_offset_[1].data(), node_offset_[2].data(), node_offset_[3].data(),
         {grad_[0].data(), grad_[1].data(), grad_[2].data(), grad_[3].data(), grad_[4].data(),
          grad_[5].data(), grad_[6].data(), grad_[7].data(), grad_[8].data()},
         volume_.data(), buffer_.data(), stride_};
   const double mu = material_.lame.mu, lambda = material_.lame.lambda;
   switch (g.kind) {
-    case ElementKind::linear: linear_kernel(s, u, begin, end, mu, lambda); break;
+    case ElementKind::linear: kernels::linear_kernel(s, u, begin, end, mu, lambda); break;
     case ElementKind::tled:
       if (material_.neo_hookean.form == material::NeoHookeanForm::paper)
-        tled_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.lambda,
+        kernels::tled_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.lambda,
                           stats.min_j, stats.max_j);
       else
-        tled_decoupled_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.bulk,
+        kernels::tled_decoupled_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.bulk,
                               scratch_.data(), stats.min_j, stats.max_j);
       break;
     case ElementKind::corotational:
-      corotational_kernel(s, u, begin, end, mu, lambda, scratch_.data(), stats.min_j, stats.max_j);
+      kernels::corotational_kernel(s, u, begin, end, mu, lambda, scratch_.data(), stats.min_j, stats.max_j);
       break;
   }
 }

@@ -11,6 +11,7 @@
 // results are bit-identical for any thread count: no atomics, no racy scatter, and range
 // boundaries fall on block boundaries so no element ever goes through a loop remainder.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "softsim/fem/aligned.hpp"
@@ -37,7 +38,9 @@ class ElementSet {
     int count = 0;  // real elements (the rest is padding)
   };
 
-  ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material);
+  // `tile_nodes`: nodes per tile of the fused element/node sweep (see compute_tile).
+  ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material,
+             int tile_nodes = 256);
 
   int num_nodes() const { return num_nodes_; }
   int num_elements() const { return static_cast<int>(kinds_.size()); }
@@ -57,13 +60,14 @@ class ElementSet {
   // Node phase: the internal force on `node` (000 eq. 23), summed in a fixed order.
   void gather(int node, double f[3]) const {
     double fx = 0, fy = 0, fz = 0;
-    const double* b = buffer_.data();
-    const int s = stride_;
+    const double* __restrict bx = buffer_.data();
+    const double* __restrict by = bx + stride_;
+    const double* __restrict bz = by + stride_;
     for (int p = incidence_begin_[node], e = incidence_begin_[node + 1]; p < e; ++p) {
-      const int o = incidence_[p];
-      fx += b[o];
-      fy += b[o + s];
-      fz += b[o + 2 * s];
+      const std::size_t o = static_cast<unsigned>(incidence_[p]);
+      fx += bx[o];
+      fy += by[o];
+      fz += bz[o];
     }
     f[0] = fx;
     f[1] = fy;
@@ -72,6 +76,21 @@ class ElementSet {
 
   // Splits [0, padded_size) into `parts` block-aligned ranges of about equal estimated cost.
   std::vector<int> balanced_ranges(int parts) const;
+
+  // ---- tiles: the fused sweep that keeps the force buffer in cache ----
+  // Tile t holds, in every group, a block-aligned run of the elements whose highest node lies
+  // in [t·tile_nodes, (t+1)·tile_nodes) (rounded to whole blocks). A node is ready — all its
+  // incident corner forces written — once its ready tile is computed, so a sweep "compute tile t,
+  // then update the nodes ready at t" consumes the buffer while it is still in cache.
+  int num_tiles() const { return num_tiles_; }
+  void compute_tile(const double* u, int tile, KernelStats& stats, double* seconds = nullptr);
+  const int* ready_nodes_begin(int tile) const { return ready_nodes_.data() + ready_begin_[tile]; }
+  const int* ready_nodes_end(int tile) const { return ready_nodes_.data() + ready_begin_[tile + 1]; }
+  int ready_tile(int node) const { return ready_tile_[node]; }
+  int first_tile(int node) const { return first_tile_[node]; }
+  // Estimated cost of a tile's elements and ready nodes (units of one TLED element).
+  double tile_cost(int tile) const;
+  static constexpr double kNodeCost = 2.5;
 
   // Reference shape of internal slot i (gradients and volume as stored).
   TetShape shape(int internal) const;
@@ -86,6 +105,7 @@ class ElementSet {
 
  private:
   void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats);
+  void build_tiles(const std::vector<int>& key, int tile_nodes);
 
   int num_nodes_ = 0;
   int stride_ = 0;  // padded element count: component c of slot i lives at buffer[c * stride + i]
@@ -100,6 +120,10 @@ class ElementSet {
   AlignedVector<double> scratch_;  // per slot: what a kernel's fix-up pass decides on (J, polar convergence)
   std::vector<int> incidence_begin_;
   std::vector<int> incidence_;  // buffer offset of the x component of each incident corner
+  int num_tiles_ = 1;
+  std::vector<std::pair<int, int>> tile_blocks_;  // [tile * groups + group] -> slot range
+  std::vector<int> ready_tile_, first_tile_;      // per node
+  std::vector<int> ready_begin_, ready_nodes_;    // per tile: nodes ready there (ascending)
 };
 
 }  // namespace softsim::fem

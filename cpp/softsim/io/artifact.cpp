@@ -67,7 +67,7 @@ Artifact Artifact::read(const std::string& path, const std::string& schema_name,
   a.sha256_ = sha256_hex(text);
   try {
     a.doc_ = std::make_shared<nlohmann::json>(nlohmann::json::parse(text));
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax errors and out-of-range numbers
     std::string msg = e.what();
     const auto pos = msg.find("] ");
     if (pos != std::string::npos) msg = msg.substr(pos + 2);

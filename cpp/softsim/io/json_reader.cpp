@@ -52,7 +52,7 @@ nlohmann::json JsonReader::parse_file(const std::string& path) {
   try {
     // Comments are not JSON; NaN/Infinity literals are rejected by the parser itself.
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax errors and out-of-range numbers
     std::string msg = e.what();
     // nlohmann's message starts with "[json.exception.parse_error.101] "; keep the useful part.
     const auto pos = msg.find("] ");

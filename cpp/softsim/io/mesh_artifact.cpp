@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "softsim/io/artifact.hpp"
 
@@ -70,7 +72,11 @@ mesh::TetMesh mesh_from_json(const JsonReader& payload) {
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
       t.fail("4 distinct node indices");
     const double v = mesh::signed_volume(m, m.tets[e]);
-    if (!(v > 0)) t.fail("a positively oriented tetrahedron (volume " + std::to_string(v) + ")");
+    if (!(v > 0)) {
+      std::ostringstream vol;
+      vol << std::scientific << std::setprecision(3) << v;
+      t.fail("a positively oriented tetrahedron (volume " + vol.str() + " m^3)");
+    }
   }
   const JsonReader boundary = payload.at("boundary");
   m.boundary.resize(boundary.size());
