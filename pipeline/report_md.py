@@ -1,4 +1,5 @@
 """results/REPORT.md: the per-area summaries gathered in one page, in a fixed reading order."""
+import re
 from pipeline.artifacts import git_commit
 from pipeline.paths import RESULTS
 
@@ -18,5 +19,21 @@ def assemble() -> None:
         summaries = ([d / "summary.md"] if (d / "summary.md").exists() else []) + \
             sorted(d.glob("*_summary.md"))
         for summary in summaries:
-            parts.append(summary.read_text().strip() + "\n")
+            parts.append(_relink(summary.read_text().strip(), d) + "\n")
     (RESULTS / "REPORT.md").write_text("\n".join(parts))
+
+
+LINK = re.compile(r"(\]\()([^)#\s]+)(\))")
+
+
+def _relink(text: str, folder) -> str:
+    """A summary links its own files relative to its folder; in REPORT.md (one level up) such a
+    link needs the folder's name in front."""
+    def fix(m):
+        target = m.group(2)
+        if "://" in target or target.startswith("/") or (RESULTS / target).exists():
+            return m.group(0)
+        if (folder / target).exists():
+            return f"{m.group(1)}{folder.name}/{target}{m.group(3)}"
+        return m.group(0)
+    return LINK.sub(fix, text)

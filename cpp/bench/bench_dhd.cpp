@@ -12,6 +12,7 @@
 #include "softsim/dynamics/explicit_solver.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/stable_step.hpp"
+#include "softsim/fem/element_response.hpp"
 #include "softsim/fem/element_set.hpp"
 #include "softsim/hybrid/dhd_run.hpp"
 #include "softsim/hybrid/partition.hpp"
@@ -112,5 +113,42 @@ void BM_Kernel(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()) * m.num_tets(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
+
+// The literal reading of "a precomputed 12 × 12 stiffness block times the element's
+// displacements" for linear elements, for comparison with BM_Kernel/partition:2 (the same
+// forces from the shape gradients): 144 stored values per element instead of 10.
+void BM_LinearBlockKernel(benchmark::State& state) {
+  const auto& m = paper_mesh();
+  const fem::Material mat = fem::Material::make(kPaper, material::NeoHookeanForm::paper);
+  const int ne = m.num_tets();
+  std::vector<double> blocks(static_cast<std::size_t>(ne) * 144);
+  std::vector<int> nodes(static_cast<std::size_t>(ne) * 4);
+  const fem::Corners zero{};
+  for (int e = 0; e < ne; ++e) {
+    const fem::ElementMatrix K = fem::element_tangent(mat, ElementKind::linear, fem::tet_shape(m, e), zero);
+    for (int r = 0; r < 12; ++r)
+      for (int c = 0; c < 12; ++c) blocks[static_cast<std::size_t>(e) * 144 + 12 * r + c] = K(r, c);
+    for (int a = 0; a < 4; ++a) nodes[4 * e + a] = 3 * m.tets[e][a];
+  }
+  std::vector<double> u(3 * m.nodes.size(), 1e-4), out(static_cast<std::size_t>(ne) * 12);
+  for (std::size_t q = 0; q < u.size(); ++q) u[q] = 1e-4 * static_cast<double>(q % 17);
+  for (auto _ : state) {
+    for (int e = 0; e < ne; ++e) {
+      double ue[12];
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 3; ++k) ue[3 * a + k] = u[nodes[4 * e + a] + k];
+      const double* K = &blocks[static_cast<std::size_t>(e) * 144];
+      for (int r = 0; r < 12; ++r) {
+        double f = 0;
+        for (int c = 0; c < 12; ++c) f += K[12 * r + c] * ue[c];
+        out[static_cast<std::size_t>(e) * 12 + r] = f;
+      }
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["elements_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * ne, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_LinearBlockKernel)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

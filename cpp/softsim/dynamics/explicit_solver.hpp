@@ -1,8 +1,11 @@
 #pragma once
 // The explicit dynamic engine of DHD-FEA (000 §2.2.3–2.2.4): per step, element forces (any mix
 // of kinds), nodal resultants (eq. 23) and the central-difference update (eq. 33) with lumped
-// mass and mass-proportional damping. Multithreaded with OpenMP over block-aligned element
-// ranges and node ranges; bit-identical for any thread count.
+// mass and mass-proportional damping. One step is a sweep over the element set's tiles: compute
+// a tile's elements, then update the nodes that became ready, so the force buffer is read back
+// while still in cache. Multithreaded with OpenMP: each thread sweeps a run of tiles, the nodes
+// on the boundaries between runs wait for one barrier; two barriers per step, no atomics, and
+// results bit-identical for any thread count.
 //
 // Failure detection: an inverted TLED or corotational element (J ≤ 0) is caught in the step it
 // happens; a non-finite displacement in the step it appears; an inverted linear element and
@@ -44,12 +47,12 @@ struct EnergySample {
 
 struct ExplicitTiming {
   int threads = 1;
-  double wall_seconds = 0;  // the whole stepping loop including energy samples
-  double steps_per_second = 0;
+  double wall_seconds = 0;      // the whole stepping loop, energy samples and snapshots included
+  double steps_per_second = 0;  // steps / (wall_seconds − sample_seconds): the stepping alone
   std::array<double, fem::kNumElementKinds> kernel_seconds{};  // summed over threads
   std::array<int, fem::kNumElementKinds> element_counts{};
   double node_seconds = 0;  // nodal gather and update, summed over threads
-  double sample_seconds = 0;
+  double sample_seconds = 0;  // energy samples, checks and snapshot callbacks
 };
 
 struct ExplicitResult {

@@ -6,7 +6,9 @@
 //   * the element phase writes each element's 12 corner forces into a per-element buffer
 //     (component-major, so the vectorised kernels store contiguously);
 //   * the node phase sums, for each node, its incident corner forces over a precomputed
-//     node → (element, corner) list in a fixed order (000 eq. 23).
+//     node → (element, corner) list in a fixed order (000 eq. 23);
+//   * elements are sorted by their highest node index and cut into tiles, so a step can sweep
+//     "tile of elements, then the nodes it completed" while the buffer is still in cache.
 // Every element and every node is computed the same way whatever the split into ranges, so
 // results are bit-identical for any thread count: no atomics, no racy scatter, and range
 // boundaries fall on block boundaries so no element ever goes through a loop remainder.
@@ -40,7 +42,7 @@ class ElementSet {
 
   // `tile_nodes`: nodes per tile of the fused element/node sweep (see compute_tile).
   ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material,
-             int tile_nodes = 256);
+             int tile_nodes = 128);
 
   int num_nodes() const { return num_nodes_; }
   int num_elements() const { return static_cast<int>(kinds_.size()); }

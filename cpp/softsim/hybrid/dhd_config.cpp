@@ -121,7 +121,7 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
     s.uniform_element = read_kind(*p, "element", {"tled", "linear", "corotational"}, default_element);
   } else if (kind == "layers") {
     s.kind = PartitionKind::layers;
-    s.nonlinear_layers = static_cast<int>(p->get_int("nonlinear_layers"));
+    s.nonlinear_layers = p->get_int32("nonlinear_layers");
     p->require(s.nonlinear_layers >= 0, "nonlinear_layers", "a non-negative layer count");
     s.tag = p->get_string("tag", "layer");
     p->require(mesh.element_tags.count(s.tag) > 0, "tag", "the name of an element tag of the mesh");
@@ -223,6 +223,21 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
         load.force_per_node /= static_cast<double>(load.nodes.size());
       load.ramp = read_ramp(e);
       e.reject_unknown();
+      // A force whose every loaded component sits on constrained nodes does nothing but change
+      // a reaction: almost surely the wrong node set, so it is refused. (A force on a face whose
+      // clamped edge it shares is fine: some of its nodes are free.)
+      bool moves_something = false;
+      for (int node : load.nodes)
+        for (int a = 0; a < 3 && !moves_something; ++a) {
+          if (load.force_per_node[a] == 0.0) continue;
+          bool constrained = false;
+          for (const auto& con : scene.constraints)
+            if (con.components[a] && std::find(con.nodes.begin(), con.nodes.end(), node) != con.nodes.end())
+              constrained = true;
+          moves_something = !constrained;
+        }
+      if (!moves_something)
+        e.fail("a force acting on at least one free component, but every loaded node is constrained");
       scene.loads.push_back(load);
     }
   }
@@ -254,20 +269,20 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
       s->at(key).fail(std::string("no ") + (c.static_solver ? "explicit" : "static") + "-solver key with solver.kind \"" +
                       (c.static_solver ? "static" : "explicit") + "\"");
   ExplicitConfig& e = c.explicit_solver;
-  e.steps = static_cast<int>(s->get_int("steps", e.steps));
+  e.steps = s->get_int32("steps", e.steps);
   s->require(e.steps >= 0, "steps", "a non-negative step count");
   if (s->has("dt")) e.dt = s->get_positive("dt");
   e.safety_factor = s->get_positive("safety_factor", e.safety_factor);
   s->require(e.safety_factor <= 1.0, "safety_factor", "a factor in (0, 1]");
   e.force_dt = s->get_bool("force_dt", false);
-  e.energy_interval = static_cast<int>(s->get_int("energy_interval", e.energy_interval));
+  e.energy_interval = s->get_int32("energy_interval", e.energy_interval);
   s->require(e.energy_interval >= 1, "energy_interval", "a positive step count");
   e.energy_growth_limit = s->get_positive("energy_growth_limit", e.energy_growth_limit);
   s->require(e.energy_growth_limit >= 1.0, "energy_growth_limit", "a factor of at least 1");
   dynamics::StaticOptions& st = c.static_options;
-  st.increments = static_cast<int>(s->get_int("increments", st.increments));
+  st.increments = s->get_int32("increments", st.increments);
   s->require(st.increments >= 1, "increments", "a positive increment count");
-  st.max_iterations = static_cast<int>(s->get_int("max_iterations", st.max_iterations));
+  st.max_iterations = s->get_int32("max_iterations", st.max_iterations);
   s->require(st.max_iterations >= 1, "max_iterations", "a positive iteration count");
   st.tolerance = s->get_positive("tolerance", st.tolerance);
   s->reject_unknown();
@@ -278,7 +293,7 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   if (!o) return;
   OutputConfig& out = c.output;
   out.vtu = o->get_string("vtu", "");
-  out.vtu_interval = static_cast<int>(o->get_int("vtu_interval", 0));
+  out.vtu_interval = o->get_int32("vtu_interval", 0);
   o->require(out.vtu_interval >= 0, "vtu_interval", "a non-negative step count");
   if (out.vtu_interval > 0 && out.vtu.empty()) o->fail("a \"vtu\" path together with \"vtu_interval\"");
   if (auto traj = o->optional("trajectories")) {
@@ -295,7 +310,7 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
       }
     }
   }
-  out.trajectory_interval = static_cast<int>(o->get_int("trajectory_interval", 1));
+  out.trajectory_interval = o->get_int32("trajectory_interval", 1);
   o->require(out.trajectory_interval >= 1, "trajectory_interval", "a positive step count");
   out.velocity = o->get_bool("velocity", false);
   o->reject_unknown();
@@ -304,7 +319,7 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
 void read_bench(const io::JsonReader& cfg, DhdConfig& c) {
   auto b = cfg.optional("bench");
   if (!b) return;
-  c.bench.steps = static_cast<int>(b->get_int("steps", c.bench.steps));
+  c.bench.steps = b->get_int32("steps", c.bench.steps);
   b->require(c.bench.steps >= 1, "steps", "a positive step count");
   if (b->has("threads")) {
     c.bench.threads.clear();
@@ -340,7 +355,7 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   read_boundary(cfg, mesh, c);
   read_solver(cfg, c);
   read_output(cfg, mesh, c);
-  c.threads = static_cast<int>(cfg.get_int("threads", 1));
+  c.threads = cfg.get_int32("threads", 1);
   cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");
   read_bench(cfg, c);
   cfg.reject_unknown();

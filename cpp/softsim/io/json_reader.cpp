@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace softsim::io {
@@ -166,6 +167,17 @@ double JsonReader::get_positive(const std::string& key, double fallback) const {
 
 std::int64_t JsonReader::get_int(const std::string& key, std::int64_t fallback) const {
   return has(key) ? at(key).as_int() : fallback;
+}
+
+int JsonReader::get_int32(const std::string& key) const {
+  const std::int64_t v = get_int(key);
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    at(key).fail("an integer within the 32-bit range");
+  return static_cast<int>(v);
+}
+
+int JsonReader::get_int32(const std::string& key, int fallback) const {
+  return has(key) ? get_int32(key) : fallback;
 }
 
 bool JsonReader::get_bool(const std::string& key, bool fallback) const {

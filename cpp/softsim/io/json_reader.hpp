@@ -56,6 +56,10 @@ class JsonReader {
   double get_positive(const std::string& key, double fallback) const;
   std::int64_t get_int(const std::string& key) const { return at(key).as_int(); }
   std::int64_t get_int(const std::string& key, std::int64_t fallback) const;
+  // An integer that must fit an `int` (counts, intervals): checked before any narrowing, so
+  // 4294967297 is refused instead of silently becoming 1.
+  int get_int32(const std::string& key) const;
+  int get_int32(const std::string& key, int fallback) const;
   bool get_bool(const std::string& key, bool fallback) const;
   std::string get_string(const std::string& key) const { return at(key).as_string(); }
   std::string get_string(const std::string& key, const std::string& fallback) const;

@@ -1,0 +1,109 @@
+#include "softsim/dynamics/explicit_solver.hpp"
+
+namespace softsim::dynamics {
+
+// Gather and central-difference update (000 eq. 33) of node i; `check` turns NaN as soon as a
+// value is not finite.
+template <bool kGravity>
+inline void ExplicitSolver::update_node(int i, const double* up, const double* uc, double* un, double& check) const {
+  double f[3];
+  elements_.gather(i, f);
+  const double a = A_[i], b = B_[i], c = C_[i];
+  double x = b * uc[3 * i] - c * up[3 * i] - a * f[0];
+  double y = b * uc[3 * i + 1] - c * up[3 * i + 1] - a * f[1];
+  double z = b * uc[3 * i + 2] - c * up[3 * i + 2] - a * f[2];
+  if (kGravity) {
+    const double am = Am_[i];
+    x += am * scene_.gravity.x();
+    y += am * scene_.gravity.y();
+    z += am * scene_.gravity.z();
+  }
+  un[3 * i] = x;
+  un[3 * i + 1] = y;
+  un[3 * i + 2] = z;
+  check += (x - x) + (y - y) + (z - z);
+}
+
+// Nodes list[begin, split) are plain, list[split, end) special.
+template <bool kGravity>
+void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
+                                  const double* uc, double* un, double& check) {
+  for (int k = begin; k < split; ++k) update_node<kGravity>(list[k], up, uc, un, check);
+  for (int k = split; k < end; ++k) {
+    update_node<kGravity>(list[k], up, uc, un, check);
+    update_special(list[k], step, up, uc, un);
+  }
+}
+
+void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
+                                  const double* uc, double* un, double& check) {
+  if (gravity_) update_nodes<true>(list, begin, split, end, step, up, uc, un, check);
+  else update_nodes<false>(list, begin, split, end, step, up, uc, un, check);
+}
+
+// Loads, probe, constraints, work booking and trajectory samples of node i, after its update.
+void ExplicitSolver::update_special(int i, int step, const double* up, const double* uc, double* un) {
+  const double dt = opt_.dt;
+  const double t = step * dt;
+  // Nodal loads: R enters eq. 33 as + A R.
+  for (int e = load_begin_[i]; e < load_begin_[i + 1]; ++e) {
+    const LoadEntry& le = loads_[e];
+    const NodalLoad& load = scene_.loads[le.load];
+    const double r = load.ramp.at(t);
+    for (int k = 0; k < 3; ++k)
+      if (le.free[k]) un[3 * i + k] += A_[i] * r * load.force_per_node[k];
+  }
+  // The probe spring pulls its node towards the tool tip.
+  const bool probe_here = scene_.has_probe && scene_.probe.node == i;
+  Eigen::Vector3d probe_force = Eigen::Vector3d::Zero();
+  if (probe_here) {
+    const Eigen::Vector3d ui(uc[3 * i], uc[3 * i + 1], uc[3 * i + 2]);
+    probe_force = scene_.probe.stiffness * (scene_.probe.displacement * scene_.probe.ramp.at(t) - ui);
+    for (int k = 0; k < 3; ++k)
+      if (probe_free_[k]) un[3 * i + k] += A_[i] * probe_force[k];
+    if (probe_force_ && step % opt_.trajectory_interval == 0)
+      (*probe_force_)[step / opt_.trajectory_interval] = probe_force;
+  }
+  // Constraints overwrite. External work is booked on [t − Δt, t] with the trapezoidal rule,
+  // ½ (f(t − Δt) + f(t)) · (u(t) − u(t − Δt)), the form the central-difference energy balance
+  // takes; a moving constraint's force is the one that produces its motion, M a + D v + F.
+  const double alpha = opt_.damping_alpha;
+  for (int e = dof_begin_[i]; e < dof_begin_[i + 1]; ++e) {
+    const ConstrainedDof& d = dofs_[e];
+    const int q = 3 * i + d.component;
+    const double value = d.value * scene_.constraints[d.constraint].ramp.at(t + dt);
+    if (moving_[d.constraint]) {
+      double f[3];
+      elements_.gather(i, f);
+      const double m = mass_[i];
+      const double total =
+          m * (value - 2.0 * uc[q] + up[q]) / (dt * dt) + alpha * m * (value - up[q]) / (2.0 * dt) + f[d.component];
+      if (step > 0) dof_work_[e] += 0.5 * (dof_force_[e] + total) * (uc[q] - up[q]);
+      dof_force_[e] = total;
+    }
+    un[q] = value;
+  }
+  if (step > 0)
+    for (int e = load_begin_[i]; e < load_begin_[i + 1]; ++e) {
+      const LoadEntry& le = loads_[e];
+      const NodalLoad& load = scene_.loads[le.load];
+      const double r = 0.5 * (load.ramp.at(t - dt) + load.ramp.at(t));
+      double w = 0;
+      for (int k = 0; k < 3; ++k)
+        if (le.free[k]) w += r * load.force_per_node[k] * (uc[3 * i + k] - up[3 * i + k]);
+      load_work_[e] += w;
+    }
+  if (probe_here) {
+    if (step > 0)
+      for (int k = 0; k < 3; ++k)
+        if (probe_free_[k]) probe_work_ += 0.5 * (probe_previous_[k] + probe_force[k]) * (uc[3 * i + k] - up[3 * i + k]);
+    probe_previous_ = probe_force;
+  }
+  if (trajectories_ && (step + 1) % opt_.trajectory_interval == 0) {
+    const int sample = (step + 1) / opt_.trajectory_interval;
+    for (int j = trajectory_begin_[i]; j < trajectory_begin_[i + 1]; ++j)
+      (*trajectories_)[trajectory_order_[j]][sample] = Eigen::Vector3d(un[3 * i], un[3 * i + 1], un[3 * i + 2]);
+  }
+}
+
+}  // namespace softsim::dynamics
