@@ -26,9 +26,17 @@ def module_file(module: str) -> Path:
     return Path(spec.origin)
 
 
+_AST_LOCK = threading.Lock()  # CPython's ast.parse is not safe across threads
+
+
 def pipeline_import_closure(module: str) -> list:
     """The source files of `module` and of every pipeline.* module it imports, transitively:
     an edit to a shared helper (tables, plots, a *_common module) changes the key."""
+    with _AST_LOCK:
+        return _import_closure(module)
+
+
+def _import_closure(module: str) -> list:
     seen, todo, files = set(), [module], []
     while todo:
         name = todo.pop()
