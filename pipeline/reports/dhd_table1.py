@@ -2,7 +2,7 @@
 → results/dhd/table1.md/csv, table1_bench.md/csv, table1_speed.png and the "table1" part of
 summary.md.
 
-Inputs: "timing" (pipeline.stages.dhd_timing: every share measured in one session, interleaved
+Inputs: "timing" (pipeline.stages.dhd_timing: every share measured in one sitting, interleaved
 repeats) and optionally "bench" (`dhd_sim --bench`: all-TLED, all-linear, all-corotational and
 one mixed share in one process, a cross-check).
 
@@ -10,7 +10,7 @@ Frame rate. The paper reports frame rates without saying how many explicit steps
 its remark that small meshes are capped at the display's 75 Hz suggests one simulation step per
 rendered frame, so our "equivalent frame rate" is steps/s at one step per frame (rendering not
 included). Steps/s is the primary figure; the comparable quantity is the speed-up relative to
-r = 0, a ratio measured in one session on one machine."""
+r = 0, a ratio measured in one sitting on one machine."""
 import numpy as np
 
 from pipeline import plots

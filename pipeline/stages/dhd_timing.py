@@ -1,4 +1,4 @@
-"""Steps per second of dhd_sim for several partitions, measured in one session so that their
+"""Steps per second of dhd_sim for several partitions, measured in one sitting so that their
 ratios are comparable (000 Table 1): every partition is run `repeats` times, the partitions
 interleaved (round robin, the order rotated each round), so a slow spell of a shared machine
 touches all of them alike. The figure is the best of the repeats (the highest steps/s: other

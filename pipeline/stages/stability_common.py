@@ -6,6 +6,7 @@ A stage that calls executables records their sha256 in its artifact (`tools`), s
 tell when a cached stability artifact was made by an older binary.
 """
 import json
+import re
 import os
 import subprocess
 import tempfile
@@ -57,7 +58,8 @@ def run_tool(name, config, mode=None, args=(), timeout=600):
         proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=timeout, env=env)
         seconds = time.time() - start
         lines = [l for l in proc.stderr.splitlines() if l.strip()]
-        message = lines[-1] if lines else ""
+        # Temporary folders are this machine's business: keep them out of the results.
+        message = re.sub(r"/tmp/[^/\s]+/", "<temp>/", lines[-1]) if lines else ""
         if proc.returncode not in (0, 2, 3):
             raise RuntimeError(f"{name} ended with exit {proc.returncode}: {message}")
         payload = None

@@ -36,7 +36,7 @@ def case_param(tool, name, case):
 
 
 # ----------------------------------------------------------------------------- inputs
-# Valid artifacts the configs refer to through placeholders, made once per session by the
+# Valid artifacts the configs refer to through placeholders, made once per test run by the
 # tools themselves (so they always have the current schema) and only when a case needs them.
 class Inputs:
     MESHER = {"source": {"kind": "cuboid", "cells": [2, 2, 2], "size": [0.02, 0.02, 0.02]}}
