@@ -31,3 +31,19 @@ def file_hash(path) -> str:
 
 def sha256_json(value) -> str:
     return sha256_bytes(json.dumps(value, sort_keys=True, separators=(",", ":")).encode())
+
+
+@lru_cache(maxsize=None)
+def _content_hash_cached(path: str, mtime_ns: int, size: int) -> str:
+    with open(path) as f:
+        doc = json.load(f)
+    return sha256_json({"schema": doc.get("schema"), "payload": doc.get("payload")})
+
+
+def content_hash(path) -> str:
+    """Hash of an artifact's schema and payload, without its provenance: what a downstream run
+    actually consumes. The provenance names the commit, so keying on the whole file would
+    rerun every downstream stage after every commit."""
+    p = Path(path)
+    st = p.stat()
+    return _content_hash_cached(str(p), st.st_mtime_ns, st.st_size)

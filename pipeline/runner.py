@@ -16,7 +16,7 @@ from pipeline import experiment as experiment_mod
 from pipeline.artifacts import git_commit, write_json_atomic
 from pipeline.context import ReportContext, RunView, StageContext
 from pipeline.errors import RunFailed
-from pipeline.hashing import file_hash, sha256_json
+from pipeline.hashing import content_hash, file_hash, sha256_json
 from pipeline.paths import ARTIFACTS, BIN, CONFIGS, LOGS, RESULTS, ROOT, STAMPS, rel
 
 def module_file(module: str) -> Path:
@@ -105,7 +105,7 @@ class Runner:
     def key_of(self, exp, run) -> str:
         def by_hash(stage, idx):
             rid = stage if idx is None else f"{stage}#{idx}"
-            return "sha256:" + file_hash(self._dep_outcome(exp, rid).artifact)
+            return "content:" + content_hash(self._dep_outcome(exp, rid).artifact)
 
         material = {
             "kind": run.kind,
@@ -120,7 +120,7 @@ class Runner:
             material["results"] = exp.results_subdir
             material["params"] = run.params
             material["paper"] = exp.doc.get("paper")
-            material["inputs"] = [(rid, file_hash(self._dep_outcome(exp, rid).artifact)) for rid in run.deps]
+            material["inputs"] = [(rid, content_hash(self._dep_outcome(exp, rid).artifact)) for rid in run.deps]
         return sha256_json(material)
 
     # ---------------------------------------------------------------- execution

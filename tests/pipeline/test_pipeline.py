@@ -109,3 +109,16 @@ def test_every_shipped_experiment_loads():
     for name in experiment_mod.list_experiments():
         exp = experiment_mod.load(name)
         assert exp.runs, name
+
+
+def test_content_hash_ignores_provenance_but_not_payload(tmp_path):
+    """Downstream keys use the artifact's schema and payload: a new commit in the provenance
+    must not rerun the pipeline, a changed payload must."""
+    from pipeline.hashing import content_hash
+    doc = {"schema": {"name": "x", "version": 1}, "provenance": {"git_commit": "a" * 40}, "payload": {"u": [1.0]}}
+    a, b, c = tmp_path / "a.json", tmp_path / "b.json", tmp_path / "c.json"
+    a.write_text(json.dumps(doc))
+    b.write_text(json.dumps(dict(doc, provenance={"git_commit": "b" * 40})))
+    c.write_text(json.dumps(dict(doc, payload={"u": [2.0]})))
+    assert content_hash(a) == content_hash(b)
+    assert content_hash(a) != content_hash(c)

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "softsim/io/errors.hpp"
+#include "softsim/io/git_commit.hpp"
 #include "softsim/io/sha256.hpp"
 #include "softsim/version.hpp"
 
@@ -49,7 +50,7 @@ int run_app(int argc, char** argv, const AppInfo& info,
         print_help(info);
         return 0;
       } else if (a == "--version") {
-        std::cout << info.name << " " << kVersion << " (" << kGitCommit << ")\n";
+        std::cout << info.name << " " << kVersion << " (" << io::git_commit() << ")\n";
         return 0;
       } else if (a == "--config" || a == "--out") {
         if (i + 1 >= args.size()) throw InputError("command line: " + a + " expects a file name");

@@ -4,6 +4,7 @@
 
 #include "softsim/io/atomic_file.hpp"
 #include "softsim/io/errors.hpp"
+#include "softsim/io/git_commit.hpp"
 #include "softsim/io/sha256.hpp"
 #include "softsim/version.hpp"
 
@@ -41,7 +42,7 @@ nlohmann::json make_artifact(const std::string& schema_name, int schema_version,
   for (const auto& [path, hash] : provenance.input_sha256) inputs[path] = hash;
   nlohmann::json prov = {{"tool", provenance.tool},
                          {"version", kVersion},
-                         {"git_commit", kGitCommit},
+                         {"git_commit", git_commit()},
                          {"config", provenance.config},
                          {"inputs", inputs},
                          {"seed", nullptr}};
