@@ -34,6 +34,11 @@ struct Builder {
       tok.fail("a unique node id", "duplicate id " + std::to_string(id));
     mesh.nodes.push_back(x);
   }
+  // Keeps a 4-node tetrahedron (other element types are read and dropped by the callers).
+  void add_tet(const std::vector<std::int64_t>& ids, int phys, TextTokens& tok) {
+    mesh.tets.push_back({index(ids[0], tok), index(ids[1], tok), index(ids[2], tok), index(ids[3], tok)});
+    physical.push_back(phys);
+  }
   int index(std::int64_t id, TextTokens& tok) const {
     auto it = index_of_id.find(id);
     if (it == index_of_id.end()) tok.fail("a node id defined in the node block", std::to_string(id));
@@ -72,10 +77,7 @@ TetMesh read_v1(TextTokens& tok, const std::string& source) {
     if (nn != gmsh_nodes_per_element(type, tok)) tok.fail("the node count of the element type", std::to_string(nn));
     std::vector<std::int64_t> ids(static_cast<std::size_t>(nn));
     for (auto& id : ids) id = tok.next_int("node id");
-    if (type == kGmshTet4) {
-      b.mesh.tets.push_back({b.index(ids[0], tok), b.index(ids[1], tok), b.index(ids[2], tok), b.index(ids[3], tok)});
-      b.physical.push_back(phys);
-    }
+    if (type == kGmshTet4) b.add_tet(ids, phys, tok);
   }
   tok.expect("$ENDELM");
   return b.finish(source);
@@ -119,10 +121,7 @@ TetMesh read_v2(TextTokens& tok, const std::string& source) {
         const int nn = gmsh_nodes_per_element(type, tok);
         std::vector<std::int64_t> ids(static_cast<std::size_t>(nn));
         for (auto& id : ids) id = tok.next_int("node id");
-        if (type == kGmshTet4) {
-          b.mesh.tets.push_back({b.index(ids[0], tok), b.index(ids[1], tok), b.index(ids[2], tok), b.index(ids[3], tok)});
-          b.physical.push_back(phys);
-        }
+        if (type == kGmshTet4) b.add_tet(ids, phys, tok);
       }
       tok.expect("$EndElements");
     } else if (!section.empty() && section[0] == '$') {
@@ -214,10 +213,7 @@ TetMesh read_v4(TextTokens& tok, const std::string& source) {
           tok.next_int("element tag");
           std::vector<std::int64_t> ids(static_cast<std::size_t>(nn));
           for (auto& id : ids) id = tok.next_int("node tag");
-          if (type == kGmshTet4) {
-            b.mesh.tets.push_back({b.index(ids[0], tok), b.index(ids[1], tok), b.index(ids[2], tok), b.index(ids[3], tok)});
-            b.physical.push_back(phys);
-          }
+          if (type == kGmshTet4) b.add_tet(ids, phys, tok);
         }
       }
       tok.expect("$EndElements");
