@@ -81,16 +81,7 @@ int main(int argc, char** argv) {
       snapshot = [&](int step, double, const std::vector<double>& u, const std::vector<double>& v) {
         io::write_vtu(snapshot_path(config.output.vtu, step), mesh, vtu_fields(mesh, kinds, u, v));
       };
-    // The library's time-step check knows no file: name the config and its /solver block here.
-    const hybrid::DhdRun run = [&] {
-      try {
-        return hybrid::run_dhd(mesh, config, snapshot);
-      } catch (const InputError& e) {
-        const std::string m = e.what();
-        if (m.rfind("solver: ", 0) == 0) throw InputError(ctx.config_path + ": /solver: " + m.substr(8));
-        throw;
-      }
-    }();
+    const hybrid::DhdRun run = hybrid::run_dhd(mesh, config, snapshot);
     if (!config.output.vtu.empty()) {
       const std::vector<double>& u =
           run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement;

@@ -21,19 +21,15 @@
 #include "softsim/material/uniaxial.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/scenes.hpp"
+
 using namespace softsim;
 using fem::ElementKind;
 
 namespace {
 
-const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};
-
-mesh::TetMesh cuboid(int nx, int ny, int nz, double lx, double ly, double lz) {
-  mesh::CuboidSpec s;
-  s.cells = {nx, ny, nz};
-  s.size = Eigen::Vector3d(lx, ly, lz);
-  return mesh::make_cuboid(s);
-}
+using test_scenes::cuboid;
+using test_scenes::kPaper;
 
 dynamics::DisplacementConstraint constraint(const mesh::TetMesh& m, const std::string& set, Eigen::Vector3d d,
                                             std::array<bool, 3> comps = {true, true, true}) {

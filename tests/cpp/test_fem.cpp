@@ -17,19 +17,15 @@
 #include "softsim/fem/element_set.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/scenes.hpp"
+
 using namespace softsim;
 using fem::ElementKind;
 
 namespace {
 
-const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};
-
-mesh::TetMesh cuboid(int nx, int ny, int nz, double lx, double ly, double lz) {
-  mesh::CuboidSpec s;
-  s.cells = {nx, ny, nz};
-  s.size = Eigen::Vector3d(lx, ly, lz);
-  return mesh::make_cuboid(s);
-}
+using test_scenes::cuboid;
+using test_scenes::kPaper;
 
 // u = (F − I) X at every node.
 std::vector<double> affine_field(const mesh::TetMesh& m, const Eigen::Matrix3d& F) {

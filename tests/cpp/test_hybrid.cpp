@@ -22,20 +22,16 @@
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/scenes.hpp"
+
 using namespace softsim;
 using fem::ElementKind;
 namespace fs = std::filesystem;
 
 namespace {
 
-const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};
-
-mesh::TetMesh cuboid(int nx, int ny, int nz, double lx, double ly, double lz) {
-  mesh::CuboidSpec s;
-  s.cells = {nx, ny, nz};
-  s.size = Eigen::Vector3d(lx, ly, lz);
-  return mesh::make_cuboid(s);
-}
+using test_scenes::cuboid;
+using test_scenes::kPaper;
 
 int count(const std::vector<ElementKind>& k, ElementKind kind) {
   return static_cast<int>(std::count(k.begin(), k.end(), kind));

@@ -31,10 +31,10 @@ StepChoice choose_time_step(const CriticalStep& critical, std::optional<double> 
     if (s.dt > critical.dt) {
       if (!force) {
         std::ostringstream msg;
-        msg << "solver: requested time step " << s.dt << " s exceeds the critical step " << critical.dt
+        msg << "requested time step " << s.dt << " s exceeds the critical step " << critical.dt
             << " s (000 eq. 34: smallest altitude " << critical.min_altitude << " m / wave speed "
             << critical.wave_speed << " m/s); set solver.force_dt to run it anyway";
-        throw InputError(msg.str());
+        throw ConfigInputError("/solver", msg.str());
       }
       s.forced = true;
     }

@@ -102,6 +102,22 @@ CvScore cv_polynomial(const std::vector<double>& x, const std::vector<double>& y
   return score;
 }
 
+namespace {
+// What relations 2 and 3 report of one design solved for several right-hand sides.
+FitSummary summarise(const LinearDesign& design, int max_iterations, const std::string& termination,
+                     const Eigen::MatrixXd& residuals) {
+  FitSummary summary;
+  summary.condition = design.condition();
+  summary.samples = design.samples();
+  summary.parameters = design.parameters();
+  summary.max_iterations = max_iterations;
+  summary.termination = termination;
+  const double n = static_cast<double>(residuals.size());
+  summary.rmse = n > 0 ? std::sqrt(residuals.squaredNorm() / n) : 0.0;
+  return summary;
+}
+}  // namespace
+
 // ---------------- relation 2 ----------------
 
 Eigen::MatrixXd fit_surfaces(const SurfaceTerms& terms, const SurfaceFrame& frame,
@@ -120,15 +136,8 @@ Eigen::MatrixXd fit_surfaces(const SurfaceTerms& terms, const SurfaceFrame& fram
     max_iterations = std::max(max_iterations, fit.iterations);
     termination = fit.termination;
   }
-  if (summary != nullptr) {
-    summary->condition = design.condition();
-    summary->samples = design.samples();
-    summary->parameters = design.parameters();
-    summary->max_iterations = max_iterations;
-    summary->termination = termination;
-    const double n = static_cast<double>(values.size());
-    summary->rmse = n > 0 ? std::sqrt((A * coefficients - values).squaredNorm() / n) : 0.0;
-  }
+  if (summary != nullptr)
+    *summary = summarise(design, max_iterations, termination, A * coefficients - values);
   return coefficients;
 }
 
@@ -188,15 +197,8 @@ Eigen::MatrixXd fit_parameter_relation(const std::vector<double>& delta, const A
     max_iterations = std::max(max_iterations, fit.iterations);
     termination = fit.termination;
   }
-  if (summary != nullptr) {
-    summary->condition = design.condition();
-    summary->samples = design.samples();
-    summary->parameters = design.parameters();
-    summary->max_iterations = max_iterations;
-    summary->termination = termination;
-    const double n = static_cast<double>(coefficients.size());
-    summary->rmse = n > 0 ? std::sqrt((beta * Phi.transpose() - coefficients).squaredNorm() / n) : 0.0;
-  }
+  if (summary != nullptr)
+    *summary = summarise(design, max_iterations, termination, beta * Phi.transpose() - coefficients);
   return beta;
 }
 

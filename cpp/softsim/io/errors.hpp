@@ -5,11 +5,20 @@
 //   anything else  -> exit 1: an internal bug.
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace softsim {
 
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// Bad input found by the library after the config was read (e.g. a time step above the stability
+// limit): it knows the config member at fault but not the file; run_app prefixes the file.
+struct ConfigInputError : InputError {
+  ConfigInputError(std::string pointer_, const std::string& what)
+      : InputError(what), pointer(std::move(pointer_)) {}
+  std::string pointer;  // JSON pointer into the tool's config, e.g. "/solver/dt"
 };
 
 struct NumericalError : std::runtime_error {

@@ -74,19 +74,21 @@ AsyncSolver::AsyncSolver(const ReducedSystem& system, int contact_free_node, con
 
   const LinearSolverKind ls = spec.linear_solver;
   const bool enforce = spec.enforce_stability_limit;
-  auto make_block = [&](int begin_node, int end_node, const SolverSpec& solver, int every, const std::string& name) {
+  auto make_block = [&](int begin_node, int end_node, const SolverSpec& solver, int every, const std::string& name,
+                        const std::string& pointer) {
     owned_.push_back(std::make_unique<BlockIntegrator>(system_, begin_node * dpn_, end_node * dpn_, solver,
-                                                       every * frame_step_, ls, enforce, name));
+                                                       every * frame_step_, ls, enforce, name, pointer));
     return owned_.back().get();
   };
   if (merged > 0) {
     primary_min_ = bounds[merged];
-    primary_blocks_.push_back(make_block(0, primary_min_, spec.primary_solver, 1, "primary region"));
+    primary_blocks_.push_back(make_block(0, primary_min_, spec.primary_solver, 1, "primary region", "/async/primary_solver"));
   } else {
     primary_min_ = p.min_nodes;
     for (int n = p.min_nodes; n <= p.max_nodes; ++n)
       primary_blocks_.push_back(
-          make_block(0, n, spec.primary_solver, 1, "primary region (" + std::to_string(n) + " nodes)"));
+          make_block(0, n, spec.primary_solver, 1, "primary region (" + std::to_string(n) + " nodes)",
+                     "/async/primary_solver"));
   }
   region_of_node_.assign(nodes_, -1);
   for (std::size_t r = merged; r < spec.secondary.size(); ++r) {
@@ -97,10 +99,11 @@ AsyncSolver::AsyncSolver(const ReducedSystem& system, int contact_free_node, con
     sec.end_node = bounds[r + 1];
     sec.follows_primary = (r == merged);
     const std::string name = "secondary region " + std::to_string(r + 1);
+    const std::string pointer = "/async/secondary/" + std::to_string(r) + "/solver";
     if (sec.follows_primary && adaptive_) {
-      for (int n = p.min_nodes; n <= p.max_nodes; ++n) sec.blocks.push_back(make_block(n, sec.end_node, s.solver, s.every, name));
+      for (int n = p.min_nodes; n <= p.max_nodes; ++n) sec.blocks.push_back(make_block(n, sec.end_node, s.solver, s.every, name, pointer));
     } else {
-      sec.blocks.push_back(make_block(sec.begin_node, sec.end_node, s.solver, s.every, name));
+      sec.blocks.push_back(make_block(sec.begin_node, sec.end_node, s.solver, s.every, name, pointer));
     }
     for (int node = sec.begin_node; node < sec.end_node; ++node) region_of_node_[node] = static_cast<int>(secondary_.size());
     secondary_.push_back(std::move(sec));

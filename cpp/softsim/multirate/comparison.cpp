@@ -55,7 +55,7 @@ ComparisonResult run_comparison(const ReducedSystem& system, const ComparisonSpe
       std::ostringstream msg;
       msg << "static solver: the haptic loop diverges, probe stiffness x contact compliance = " << gain
           << " >= 1 (the probe spring must be softer than the model at the contact node)";
-      throw InputError(msg.str());
+      throw ConfigInputError("/haptics/probe_stiffness", msg.str());
     }
   }
 
