@@ -59,12 +59,15 @@ struct KindForm {
 };
 std::string name_of(const KindForm& kf) {
   return std::string(fem::kind_name(kf.kind)) +
-         (kf.kind == ElementKind::tled ? "_" + material::form_name(kf.form) : std::string());
+         (kf.kind == ElementKind::tled || kf.kind == ElementKind::anp ? "_" + material::form_name(kf.form)
+                                                                     : std::string());
 }
 const std::vector<KindForm> kAllKinds = {{ElementKind::linear, material::NeoHookeanForm::paper},
                                          {ElementKind::tled, material::NeoHookeanForm::paper},
                                          {ElementKind::tled, material::NeoHookeanForm::decoupled},
-                                         {ElementKind::corotational, material::NeoHookeanForm::paper}};
+                                         {ElementKind::corotational, material::NeoHookeanForm::paper},
+                                         {ElementKind::anp, material::NeoHookeanForm::paper},
+                                         {ElementKind::anp, material::NeoHookeanForm::decoupled}};
 
 // A homogeneous deformation with stretch, shear and a 40° rotation (J ≈ 0.87).
 Eigen::Matrix3d general_F() {
@@ -178,7 +181,7 @@ TEST_P(Kinds, AssembledTangentIsTheDerivativeOfTheAssembledForce) {
 INSTANTIATE_TEST_SUITE_P(AllKinds, Kinds, ::testing::ValuesIn(kAllKinds),
                          [](const auto& info) { return name_of(info.param); });
 
-TEST(RigidRotation, NinetyDegreesIsForceFreeForTledAndCorotationalButNotLinear) {
+TEST(RigidRotation, NinetyDegreesIsForceFreeForTledCorotationalAndAnpButNotLinear) {
   const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
   const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d(0, 0, 1)).toRotationMatrix();
   const std::vector<double> u = affine_field(m, R);

@@ -48,6 +48,7 @@ EnergySample ExplicitSolver::sample_energy(int n_done, const double* u_before, c
     }
   double strain = 0;
   for (double e : energy) strain += e;
+  strain += elements_.nodal_volumetric_energy(u_mid);
   s.kinetic = kinetic;
   s.strain = strain;
   s.external_work = external_work() + gravity_work;

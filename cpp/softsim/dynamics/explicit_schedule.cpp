@@ -21,6 +21,8 @@ void ExplicitSolver::build_schedule() {
     while (t < tiles && cum[t + 1] <= target) ++t;
     tile_begin_[p] = t;
   }
+  pressure_nodes_.assign(T + 1, 0);
+  for (int p = 0; p <= T; ++p) pressure_nodes_[p] = static_cast<int>(static_cast<long>(n_) * p / T);
   special_.assign(n_, 0);
   for (const auto& d : dofs_) special_[d.node] = 1;
   for (const auto& l : loads_) special_[l.node] = 1;

@@ -190,6 +190,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
     throw NumericalError(msg.str());
   };
 
+  const bool nodal_pressure = elements_.has_nodal_pressure();
   int n_done = 0;
   const auto t_loop = Clock::now();
   while (n_done < opt_.steps) {
@@ -214,6 +215,15 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
         if (timed) ++me.timed_steps;
         fem::KernelStats st;
         double check = 0.0;
+        if (nodal_pressure) {
+          // ANP pre-pass: det F of the ANP elements, then the nodal pressures they need.
+          for (int p = tid; p < T; p += nthreads)
+            for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) elements_.compute_volume_ratios(uc, q, st);
+          barrier();
+          for (int p = tid; p < T; p += nthreads)
+            elements_.update_nodal_pressures(pressure_nodes_[p], pressure_nodes_[p + 1]);
+          barrier();
+        }
         for (int p = tid; p < T; p += nthreads)
           for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) {
             elements_.compute_tile(uc, q, st, timed ? me.kernel_seconds.data() : nullptr);

@@ -5,7 +5,8 @@
 // a tile's elements, then update the nodes that became ready, so the force buffer is read back
 // while still in cache. Multithreaded with OpenMP: each thread sweeps a run of tiles, the nodes
 // on the boundaries between runs wait for one barrier; two barriers per step, no atomics, and
-// results bit-identical for any thread count.
+// results bit-identical for any thread count. With ANP elements, a pre-pass (two more barriers)
+// computes their nodal pressures first.
 //
 // Failure detection: an inverted TLED or corotational element (J ≤ 0) is caught in the step it
 // happens; a non-finite displacement in the step it appears; an inverted linear element and
@@ -119,6 +120,7 @@ class ExplicitSolver {
   std::vector<int> tile_begin_;                        // per part: first tile
   std::vector<int> local_begin_, local_split_, local_nodes_;        // per tile: nodes updated right after it
   std::vector<int> deferred_begin_, deferred_split_, deferred_nodes_;  // per part: nodes updated after the barrier
+  std::vector<int> pressure_nodes_;                    // per part: node range of the ANP pressure pass
   std::vector<char> special_;                          // per node: has constraints, loads, ...
   std::vector<int> dof_begin_, load_begin_, trajectory_begin_;  // per node: its special entries
   std::vector<int> trajectory_order_;  // trajectory entries sorted by node

@@ -96,6 +96,21 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
     scale = std::max({f_int.lpNorm<Eigen::Infinity>(), R.lpNorm<Eigen::Infinity>(), force_floor});
   };
 
+  // Total potential Π = W(u) − λ R·u + ½ k |λ d − u_probe|², whose gradient is the residual. Near
+  // incompressibility a full Newton step can raise the residual norm while lowering Π (the
+  // quadratic part of J times a large bulk modulus), so a step is also accepted when Π falls.
+  auto potential = [&](double lambda, const Eigen::VectorXd& uu) {
+    double pi = assembler.strain_energy(uu.data()) - lambda * R_full.dot(uu);
+    if (scene.has_probe) {
+      const int p = scene.probe.node;
+      pi += 0.5 * scene.probe.stiffness * (lambda * scene.probe.displacement - uu.segment<3>(3 * p)).squaredNorm();
+    }
+    return pi;
+  };
+  auto lowers_energy = [&](double lambda, const Eigen::VectorXd& uu, double before) {
+    return potential(lambda, uu) < before;
+  };
+
   for (int inc = 1; inc <= opt.increments; ++inc) {
     const double lambda = static_cast<double>(inc) / opt.increments;
     target = u;
@@ -147,6 +162,7 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
         return s2;
       };
       const double old_norm = free_norm2(r);
+      const double old_energy = jump > 0 ? 0.0 : potential(lambda, u);
       double step = 1.0, trial_scale = 0;
       Eigen::VectorXd trial(n3), r_trial(n3);
       bool accepted = false;
@@ -156,7 +172,7 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
           for (const auto& d : dofs) trial[3 * d.node + d.component] = target[3 * d.node + d.component];
         if (assembler.min_volume_ratio(trial.data()) <= 0) continue;
         residual(lambda, trial, r_trial, trial_scale);
-        if (jump > 0 || free_norm2(r_trial) <= old_norm || ls >= 8) {
+        if (jump > 0 || free_norm2(r_trial) <= old_norm || ls >= 8 || lowers_energy(lambda, trial, old_energy)) {
           accepted = true;
           break;
         }

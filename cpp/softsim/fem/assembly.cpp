@@ -16,10 +16,22 @@ Corners gather_corners(const mesh::Tet& t, const double* u) {
 }
 }  // namespace
 
+namespace {
+std::vector<TetShape> tet_shapes(const mesh::TetMesh& mesh) {
+  std::vector<TetShape> shapes;
+  shapes.reserve(mesh.tets.size());
+  for (int e = 0; e < mesh.num_tets(); ++e) shapes.push_back(tet_shape(mesh, e));
+  return shapes;
+}
+}  // namespace
+
 Assembler::Assembler(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material)
-    : num_nodes_(mesh.num_nodes()), tets_(mesh.tets), kinds_(kinds), material_(material) {
-  shapes_.reserve(tets_.size());
-  for (int e = 0; e < mesh.num_tets(); ++e) shapes_.push_back(tet_shape(mesh, e));
+    : num_nodes_(mesh.num_nodes()),
+      tets_(mesh.tets),
+      kinds_(kinds),
+      material_(material),
+      shapes_(tet_shapes(mesh)),
+      nodal_pressure_(mesh, kinds, shapes_, material.volumetric_modulus) {
   const int n = 3 * num_nodes_;
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(tets_.size() * 144);
@@ -28,6 +40,9 @@ Assembler::Assembler(const mesh::TetMesh& mesh, const std::vector<ElementKind>& 
       for (int i = 0; i < 3; ++i)
         for (int b = 0; b < 4; ++b)
           for (int k = 0; k < 3; ++k) triplets.emplace_back(3 * t[a] + i, 3 * t[b] + k, 0.0);
+  for (const auto& [b, c] : nodal_pressure_.coupled_nodes())
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) triplets.emplace_back(3 * b + i, 3 * c + k, 0.0);
   pattern_.resize(n, n);
   pattern_.setFromTriplets(triplets.begin(), triplets.end());
   pattern_.makeCompressed();
@@ -55,6 +70,7 @@ void Assembler::internal_forces(const double* u, Eigen::VectorXd& f) const {
     const Corners fe = element_forces(material_, kinds_[e], shapes_[e], gather_corners(tets_[e], u));
     for (int a = 0; a < 4; ++a) f.segment<3>(3 * tets_[e][a]) += fe[a];
   }
+  nodal_pressure_.add_forces(u, f);
 }
 
 void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
@@ -67,13 +83,14 @@ void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
     for (int r = 0; r < 12; ++r)
       for (int c = 0; c < 12; ++c) values[idx[r * 12 + c]] += Ke(r, c);
   }
+  nodal_pressure_.add_tangent(u, K);
 }
 
 double Assembler::strain_energy(const double* u) const {
   double w = 0;
   for (std::size_t e = 0; e < tets_.size(); ++e)
     w += element_energy(material_, kinds_[e], shapes_[e], gather_corners(tets_[e], u));
-  return w;
+  return w + nodal_pressure_.energy(u);
 }
 
 double Assembler::min_volume_ratio(const double* u, int* element) const {

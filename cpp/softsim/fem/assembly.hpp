@@ -1,14 +1,15 @@
 #pragma once
 // Global assembly for the implicit (static) solver: the internal force vector Σₑ Fₑ
 // (000 eq. 27) and the sparse consistent tangent K(u) = ∂F/∂u, from the reference element
-// functions. Serial and allocation-free after construction (the sparsity pattern and the
-// element → value map are built once).
+// functions, plus the nodal volumetric part of ANP elements (nodal_pressure.hpp). Serial; the
+// sparsity pattern and the element → value map are built once.
 #include <vector>
 
 #include <Eigen/Sparse>
 
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/fem/element_kind.hpp"
+#include "softsim/fem/nodal_pressure.hpp"
 #include "softsim/fem/tet_geometry.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
@@ -37,6 +38,7 @@ class Assembler {
   std::vector<ElementKind> kinds_;
   Material material_;
   std::vector<TetShape> shapes_;
+  NodalPressure nodal_pressure_;
   Eigen::SparseMatrix<double> pattern_;
   std::vector<int> value_index_;  // 144 per element: position in pattern_.valuePtr()
 };

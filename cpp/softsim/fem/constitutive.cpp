@@ -10,6 +10,8 @@ Material Material::make(const material::ElasticParameters& elastic, material::Ne
   m.elastic = elastic;
   m.lame = material::lame_parameters(elastic);
   m.neo_hookean = material::NeoHookean::from(form, elastic);
+  m.isochoric = material::isochoric_part(m.neo_hookean);
+  m.volumetric_modulus = material::volumetric_modulus(m.neo_hookean);
   return m;
 }
 
@@ -18,6 +20,7 @@ Eigen::Matrix3d first_piola(const Material& m, ElementKind kind, const Eigen::Ma
     case ElementKind::linear: return material::linear_stress(m.lame, F);
     case ElementKind::tled: return material::first_piola(m.neo_hookean, F);
     case ElementKind::corotational: return material::corotated_first_piola(m.lame, F);
+    case ElementKind::anp: return material::first_piola(m.isochoric, F);
   }
   return Eigen::Matrix3d::Zero();
 }
@@ -27,6 +30,7 @@ double energy_density(const Material& m, ElementKind kind, const Eigen::Matrix3d
     case ElementKind::linear: return material::linear_energy_density(m.lame, F);
     case ElementKind::tled: return material::strain_energy_density(m.neo_hookean, F);
     case ElementKind::corotational: return material::corotated_energy_density(m.lame, F);
+    case ElementKind::anp: return material::strain_energy_density(m.isochoric, F);
   }
   return 0.0;
 }
@@ -37,6 +41,7 @@ Eigen::Matrix3d first_piola_increment(const Material& m, ElementKind kind, const
     case ElementKind::linear: return material::linear_stress_increment(m.lame, dF);
     case ElementKind::tled: return material::first_piola_increment(m.neo_hookean, F, dF);
     case ElementKind::corotational: return material::corotated_first_piola_increment(m.lame, F, dF);
+    case ElementKind::anp: return material::first_piola_increment(m.isochoric, F, dF);
   }
   return Eigen::Matrix3d::Zero();
 }

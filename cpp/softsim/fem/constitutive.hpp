@@ -1,7 +1,8 @@
 #pragma once
-// One material seen by the three element kinds: linear and corotational elements use the
+// One material seen by every element kind: linear and corotational elements use the
 // small-strain law with (μ, λ); TLED elements use the chosen neo-Hookean form with the same
-// (E, ν). Everything is expressed as P(F), W(F) and dP(F)[dF].
+// (E, ν); ANP elements its isochoric part only — their volumetric part U(J) lives at the nodes
+// (nodal_pressure.hpp). Everything element-local is expressed as P(F), W(F) and dP(F)[dF].
 #include <Eigen/Core>
 
 #include "softsim/fem/element_kind.hpp"
@@ -14,6 +15,8 @@ struct Material {
   material::ElasticParameters elastic;
   material::LameParameters lame;
   material::NeoHookean neo_hookean;
+  material::NeoHookean isochoric;  // neo_hookean without its volumetric term (ANP elements)
+  double volumetric_modulus = 0;   // κ of U(J) = κ/2 (J − 1)² (λ or K, by form)
 
   static Material make(const material::ElasticParameters& elastic, material::NeoHookeanForm form);
 };

@@ -102,8 +102,12 @@ void linear_kernel(const SoaView s, const double* __restrict u, int begin, int e
 
 // TLED, paper form: S = μ(I − C⁻¹) + λJ(J − 1)C⁻¹ (000 eq. 14), used as P = F S
 // = μ F + (λ(J − 1) − μ/J) cof F, and nodal forces ⁰V P ∇N (= ⁰V B_Lᵀ Ŝ of 000 eq. 13).
-void tled_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                       double lambda, double& min_j, double& max_j) {
+// kAveraged (ANP): the volumetric pressure λ(J − 1) becomes the mean of the corners' nodal ones.
+namespace {
+
+template <bool kAveraged>
+void paper_form_kernel(const SoaView& s, const double* __restrict u, int begin, int end, double mu, double lambda,
+                       const double* __restrict pressure, double& min_j, double& max_j) {
   double jmin = min_j, jmax = max_j;
   SOFTSIM_SIMD_MINMAX
   for (int k = begin; k < end; ++k) {
@@ -111,9 +115,11 @@ void tled_paper_kernel(const SoaView s, const double* __restrict u, int begin, i
     SOFTSIM_F_AND_COFACTOR
     jmin = std::min(jmin, J);
     jmax = std::max(jmax, J);
+    const double p = kAveraged ? 0.25 * (pressure[a0] + pressure[a1] + pressure[a2] + pressure[a3])
+                               : lambda * (J - 1.0);
     const double V = s.vol[k];
     const double cf = V * mu;
-    const double cc = V * (lambda * (J - 1.0) - mu / J);
+    const double cc = V * (p - mu / J);
     SOFTSIM_STORE_FORCES(s, k, cf * f00 + cc * c00, cf * f01 + cc * c01, cf * f02 + cc * c02,
                          cf * f10 + cc * c10, cf * f11 + cc * c11, cf * f12 + cc * c12,
                          cf * f20 + cc * c20, cf * f21 + cc * c21, cf * f22 + cc * c22)
@@ -122,13 +128,42 @@ void tled_paper_kernel(const SoaView s, const double* __restrict u, int begin, i
   max_j = jmax;
 }
 
+}  // namespace
+
+void tled_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
+                       double lambda, double& min_j, double& max_j) {
+  paper_form_kernel<false>(s, u, begin, end, mu, lambda, nullptr, min_j, max_j);
+}
+
+void anp_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
+                      const double* __restrict pressure, double& min_j, double& max_j) {
+  paper_form_kernel<true>(s, u, begin, end, mu, 0.0, pressure, min_j, max_j);
+}
+
+void volume_ratio_kernel(const SoaView s, const double* __restrict u, int begin, int end,
+                         double* __restrict volume_ratio, double& min_j, double& max_j) {
+  double jmin = min_j, jmax = max_j;
+  SOFTSIM_SIMD_MINMAX
+  for (int k = begin; k < end; ++k) {
+    SOFTSIM_LOAD_H(s, u, k)
+    const double J = (1.0 + h00) * ((1.0 + h11) * (1.0 + h22) - h12 * h21) -
+                     h01 * (h10 * (1.0 + h22) - h12 * h20) + h02 * (h10 * h21 - (1.0 + h11) * h20);
+    volume_ratio[k] = J;
+    jmin = std::min(jmin, J);
+    jmax = std::max(jmax, J);
+  }
+  min_j = jmin;
+  max_j = jmax;
+}
+
 // TLED, decoupled form (Miller et al. 2007): S = μJ^(−2/3)(I − I₁/3 C⁻¹) + KJ(J − 1)C⁻¹, as
-// P = μ J^(−2/3) F + (K(J − 1) − μ J^(−2/3) I₁ / (3J)) cof F.
+// P = μ J^(−2/3) F + (K(J − 1) − μ J^(−2/3) I₁ / (3J)) cof F. kAveraged (ANP): K(J − 1) becomes
+// the mean of the corners' nodal pressures.
 namespace {
 
-template <bool kExactRoot>
+template <bool kExactRoot, bool kAveraged>
 void tled_decoupled_body(const SoaView& s, const double* __restrict u, int k, double mu, double bulk,
-                         double& J_out) {
+                         const double* __restrict pressure, double& J_out) {
   SOFTSIM_LOAD_H(s, u, k)
   SOFTSIM_F_AND_COFACTOR
   J_out = J;
@@ -137,23 +172,25 @@ void tled_decoupled_body(const SoaView& s, const double* __restrict u, int k, do
   const double inv_j = kExactRoot ? 1.0 / J : a * x;
   const double I1 = f00 * f00 + f01 * f01 + f02 * f02 + f10 * f10 + f11 * f11 + f12 * f12 +
                     f20 * f20 + f21 * f21 + f22 * f22;
+  const double p = kAveraged ? 0.25 * (pressure[a0] + pressure[a1] + pressure[a2] + pressure[a3])
+                             : bulk * (J - 1.0);
   const double V = s.vol[k];
   const double cf = V * mu * a;
-  const double cc = V * (bulk * (J - 1.0) - mu * a * I1 * inv_j * (1.0 / 3.0));
+  const double cc = V * (p - mu * a * I1 * inv_j * (1.0 / 3.0));
   SOFTSIM_STORE_FORCES(s, k, cf * f00 + cc * c00, cf * f01 + cc * c01, cf * f02 + cc * c02,
                        cf * f10 + cc * c10, cf * f11 + cc * c11, cf * f12 + cc * c12,
                        cf * f20 + cc * c20, cf * f21 + cc * c21, cf * f22 + cc * c22)
 }
 
-}  // namespace
-
-void tled_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                           double bulk, double* __restrict volume_ratio, double& min_j, double& max_j) {
+template <bool kAveraged>
+void decoupled_form_kernel(const SoaView& s, const double* __restrict u, int begin, int end, double mu,
+                           double bulk, const double* __restrict pressure, double* __restrict volume_ratio,
+                           double& min_j, double& max_j) {
   double jmin = min_j, jmax = max_j;
   SOFTSIM_SIMD_MINMAX
   for (int k = begin; k < end; ++k) {
     double J;
-    tled_decoupled_body<false>(s, u, k, mu, bulk, J);
+    tled_decoupled_body<false, kAveraged>(s, u, k, mu, bulk, pressure, J);
     volume_ratio[k] = J;
     jmin = std::min(jmin, J);
     jmax = std::max(jmax, J);
@@ -165,12 +202,25 @@ void tled_decoupled_kernel(const SoaView s, const double* __restrict u, int begi
       const double J = volume_ratio[k];  // as the vectorised loop saw it
       if (J > 0 && (J < kInvCbrtMinJ || J > kInvCbrtMaxJ)) {
         double unused;
-        tled_decoupled_body<true>(s, u, k, mu, bulk, unused);
+        tled_decoupled_body<true, kAveraged>(s, u, k, mu, bulk, pressure, unused);
       }
     }
   }
   min_j = jmin;
   max_j = jmax;
+}
+
+}  // namespace
+
+void tled_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
+                           double bulk, double* __restrict volume_ratio, double& min_j, double& max_j) {
+  decoupled_form_kernel<false>(s, u, begin, end, mu, bulk, nullptr, volume_ratio, min_j, max_j);
+}
+
+void anp_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
+                          const double* __restrict pressure, double* __restrict volume_ratio, double& min_j,
+                          double& max_j) {
+  decoupled_form_kernel<true>(s, u, begin, end, mu, 0.0, pressure, volume_ratio, min_j, max_j);
 }
 
 namespace {

@@ -28,6 +28,18 @@ void tled_paper_kernel(const SoaView s, const double* __restrict u, int begin, i
 void tled_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double bulk,
                            double* __restrict volume_ratio, double& min_j, double& max_j);
 
+// ANP (nodal_pressure.hpp): TLED of either form with the volumetric term replaced by the mean
+// of the corners' nodal pressures; `pressure` holds p_a at index 3a (the corners' offsets).
+void anp_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
+                      const double* __restrict pressure, double& min_j, double& max_j);
+void anp_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
+                          const double* __restrict pressure, double* __restrict volume_ratio, double& min_j,
+                          double& max_j);
+
+// det F of each element into volume_ratio[k] (the ANP pre-pass); nothing is written to s.out.
+void volume_ratio_kernel(const SoaView s, const double* __restrict u, int begin, int end,
+                         double* __restrict volume_ratio, double& min_j, double& max_j);
+
 // Corotational. `last_update` (one per slot) is scratch for the polar-decomposition fix-up.
 void corotational_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double lambda,
                          double* __restrict last_update, double& min_j, double& max_j);

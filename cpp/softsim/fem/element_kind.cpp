@@ -7,6 +7,7 @@ const char* kind_name(ElementKind kind) {
     case ElementKind::linear: return "linear";
     case ElementKind::tled: return "tled";
     case ElementKind::corotational: return "corotational";
+    case ElementKind::anp: return "anp";
   }
   return "unknown";
 }

@@ -6,6 +6,7 @@
 
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_response.hpp"
+#include "softsim/fem/nodal_pressure.hpp"
 
 namespace softsim::fem {
 
@@ -20,6 +21,7 @@ double ElementSet::relative_cost(ElementKind kind) {
     case ElementKind::linear: return 0.9;  // measured on the paper mesh (bench_dhd)
     case ElementKind::tled: return 1.0;
     case ElementKind::corotational: return 4.8;
+    case ElementKind::anp: return 1.3;
   }
   return 1.0;
 }
@@ -86,6 +88,62 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
     for (int a = 0; a < 4; ++a) incidence_[fill[mesh.tets[e][a]]++] = 3 * a * stride_ + i;
   }
   build_tiles(key, std::max(tile_nodes, 1));
+  build_nodal_pressure(mesh);
+}
+
+void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
+  if (!has_nodal_pressure()) return;
+  std::vector<int> slot(mesh.num_tets(), -1);
+  std::vector<double> volume(mesh.num_tets(), 0.0);
+  for (int i = 0; i < stride_; ++i)
+    if (original_[i] >= 0) {
+      slot[original_[i]] = i;
+      volume[original_[i]] = volume_[i];
+    }
+  const NodalVolumes nv = nodal_volumes(mesh, kinds_, volume);
+  anp_begin_ = nv.begin;
+  anp_weight_ = nv.weight;
+  anp_node_volume_ = nv.volume;
+  anp_slot_.resize(nv.element.size());
+  for (std::size_t p = 0; p < nv.element.size(); ++p) anp_slot_[p] = slot[nv.element[p]];
+  volume_ratio_.assign(stride_, 1.0);
+  nodal_pressure_.assign(3 * static_cast<std::size_t>(num_nodes_), 0.0);
+}
+
+void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& stats) {
+  const int G = static_cast<int>(groups_.size());
+  for (int gi = 0; gi < G; ++gi) {
+    if (groups_[gi].kind != ElementKind::anp) continue;
+    const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
+    if (b < e) kernels::volume_ratio_kernel(view(), u, b, e, volume_ratio_.data(), stats.min_j, stats.max_j);
+  }
+}
+
+void ElementSet::update_nodal_pressures(int begin, int end) {
+  const double kappa = material_.volumetric_modulus;
+  for (int a = begin; a < end; ++a) {
+    if (anp_begin_[a] == anp_begin_[a + 1]) continue;
+    double J = 0;  // J_a = Σ w J_e in a fixed order (nodal_pressure.hpp)
+    for (int p = anp_begin_[a]; p < anp_begin_[a + 1]; ++p) J += anp_weight_[p] * volume_ratio_[anp_slot_[p]];
+    nodal_pressure_[3 * static_cast<std::size_t>(a)] = kappa * (J - 1.0);
+  }
+}
+
+double ElementSet::nodal_volumetric_energy(const double* u) const {
+  if (!has_nodal_pressure()) return 0.0;
+  std::vector<double> J(stride_, 1.0);
+  for (int i = 0; i < stride_; ++i)
+    if (original_[i] >= 0 && kinds_[original_[i]] == ElementKind::anp)
+      J[i] = deformation_gradient(shape(i), corners(i, u)).determinant();
+  const double kappa = material_.volumetric_modulus;
+  double w = 0;
+  for (int a = 0; a < num_nodes_; ++a) {
+    if (anp_begin_[a] == anp_begin_[a + 1]) continue;
+    double Ja = 0;
+    for (int p = anp_begin_[a]; p < anp_begin_[a + 1]; ++p) Ja += anp_weight_[p] * J[anp_slot_[p]];
+    w += anp_node_volume_[a] * 0.5 * kappa * (Ja - 1.0) * (Ja - 1.0);
+  }
+  return w;
 }
 
 void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
@@ -169,11 +227,16 @@ int ElementSet::count(ElementKind kind) const {
   return 0;
 }
 
+kernels::SoaView ElementSet::view() {
+  return kernels::SoaView{
+      node_offset_[0].data(), node_offset_[1].data(), node_offset_[2].data(), node_offset_[3].data(),
+      {grad_[0].data(), grad_[1].data(), grad_[2].data(), grad_[3].data(), grad_[4].data(), grad_[5].data(),
+       grad_[6].data(), grad_[7].data(), grad_[8].data()},
+      volume_.data(), buffer_.data(), stride_};
+}
+
 void ElementSet::compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats) {
-  kernels::SoaView s{node_offset_[0].data(), node_offset_[1].data(), node_offset_[2].data(), node_offset_[3].data(),
-        {grad_[0].data(), grad_[1].data(), grad_[2].data(), grad_[3].data(), grad_[4].data(),
-         grad_[5].data(), grad_[6].data(), grad_[7].data(), grad_[8].data()},
-        volume_.data(), buffer_.data(), stride_};
+  const kernels::SoaView s = view();
   const double mu = material_.lame.mu, lambda = material_.lame.lambda;
   switch (g.kind) {
     case ElementKind::linear: kernels::linear_kernel(s, u, begin, end, mu, lambda); break;
@@ -188,10 +251,22 @@ void ElementSet::compute_group(const Group& g, const double* u, int begin, int e
     case ElementKind::corotational:
       kernels::corotational_kernel(s, u, begin, end, mu, lambda, scratch_.data(), stats.min_j, stats.max_j);
       break;
+    case ElementKind::anp:
+      if (material_.neo_hookean.form == material::NeoHookeanForm::paper)
+        kernels::anp_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, nodal_pressure_.data(), stats.min_j,
+                                  stats.max_j);
+      else
+        kernels::anp_decoupled_kernel(s, u, begin, end, material_.neo_hookean.mu, nodal_pressure_.data(),
+                                      scratch_.data(), stats.min_j, stats.max_j);
+      break;
   }
 }
 
 void ElementSet::compute(const double* u, int begin, int end, KernelStats& stats, double* seconds) {
+  if (has_nodal_pressure() && begin == 0 && end == stride_) {
+    for (int t = 0; t < num_tiles_; ++t) compute_volume_ratios(u, t, stats);
+    update_nodal_pressures(0, num_nodes_);
+  }
   for (const Group& g : groups_) {
     const int b = std::max(begin, g.begin), e = std::min(end, g.end);
     if (b >= e) continue;

@@ -1,6 +1,6 @@
 #pragma once
 // The explicit engine's element data and kernels (000 §2.2.2–2.2.3), built for speed:
-//   * elements are regrouped by kind (linear, tled, corotational), each group padded to a
+//   * elements are regrouped by kind (linear, tled, corotational, anp), each group padded to a
 //     multiple of kBlock with inert elements, and stored as structure-of-arrays (node offsets,
 //     the nine shape gradients of corners 1–3, the reference volume);
 //   * the element phase writes each element's 12 corner forces into a per-element buffer
@@ -9,6 +9,9 @@
 //     node → (element, corner) list in a fixed order (000 eq. 23);
 //   * elements are sorted by their highest node index and cut into tiles, so a step can sweep
 //     "tile of elements, then the nodes it completed" while the buffer is still in cache.
+// ANP elements (nodal_pressure.hpp) need their corners' nodal pressures, which depend on the
+// neighbouring elements: a pre-pass computes det F of the ANP elements (compute_volume_ratios)
+// and then the nodal pressures (update_nodal_pressures) before the element phase.
 // Every element and every node is computed the same way whatever the split into ranges, so
 // results are bit-identical for any thread count: no atomics, no racy scatter, and range
 // boundaries fall on block boundaries so no element ever goes through a loop remainder.
@@ -18,6 +21,7 @@
 
 #include "softsim/fem/aligned.hpp"
 #include "softsim/fem/constitutive.hpp"
+#include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_kind.hpp"
 #include "softsim/fem/tet_geometry.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
@@ -27,7 +31,7 @@ namespace softsim::fem {
 inline constexpr int kBlock = 8;
 
 struct KernelStats {
-  double min_j = 1e300;  // smallest volume ratio J = det F seen (tled, corotational)
+  double min_j = 1e300;  // smallest volume ratio J = det F seen (tled, corotational, anp)
   double max_j = -1e300;
 };
 
@@ -56,8 +60,18 @@ class ElementSet {
 
   // Element phase over internal slots [begin, end) (block-aligned, see balanced_ranges):
   // corner forces into the buffer. If `seconds` is given, the time spent per kind is added to
-  // seconds[kind]. J of tled and corotational elements is tracked in `stats`.
+  // seconds[kind]. J of tled, corotational and anp elements is tracked in `stats`. Over the
+  // whole set, the ANP pre-pass is included; over a part, the nodal pressures must be current.
   void compute(const double* u, int begin, int end, KernelStats& stats, double* seconds = nullptr);
+
+  // ---- the ANP pre-pass (nothing to do without ANP elements) ----
+  bool has_nodal_pressure() const { return count(ElementKind::anp) > 0; }
+  // det F of the ANP elements of a tile.
+  void compute_volume_ratios(const double* u, int tile, KernelStats& stats);
+  // p_a = κ (J_a − 1) for the nodes [begin, end), from the tiles' volume ratios.
+  void update_nodal_pressures(int begin, int end);
+  // Σ_a V_a U(J_a): the ANP elements' volumetric energy (energies() holds their isochoric part).
+  double nodal_volumetric_energy(const double* u) const;
 
   // Node phase: the internal force on `node` (000 eq. 23), summed in a fixed order.
   void gather(int node, double f[3]) const {
@@ -108,6 +122,8 @@ class ElementSet {
  private:
   void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats);
   void build_tiles(const std::vector<int>& key, int tile_nodes);
+  void build_nodal_pressure(const mesh::TetMesh& mesh);
+  kernels::SoaView view();
 
   int num_nodes_ = 0;
   int stride_ = 0;  // padded element count: component c of slot i lives at buffer[c * stride + i]
@@ -120,6 +136,11 @@ class ElementSet {
   AlignedVector<double> volume_;
   AlignedVector<double> buffer_;   // 12 × stride corner forces
   AlignedVector<double> scratch_;  // per slot: what a kernel's fix-up pass decides on (J, polar convergence)
+  // ANP: det F per slot, node → (slot, weight) lists, nodal volumes, and p_a at index 3a.
+  AlignedVector<double> volume_ratio_;
+  std::vector<int> anp_begin_, anp_slot_;
+  std::vector<double> anp_weight_, anp_node_volume_;
+  AlignedVector<double> nodal_pressure_;
   std::vector<int> incidence_begin_;
   std::vector<int> incidence_;  // buffer offset of the x component of each incident corner
   int num_tiles_ = 1;

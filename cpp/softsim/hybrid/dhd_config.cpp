@@ -116,9 +116,10 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
   const std::string kind = p->get_choice("kind", {"uniform", "layers", "linear_fraction", "tags", "sphere", "strain"},
                                          p->has("linear_fraction") ? "linear_fraction" : "uniform");
   s.linear_element = read_kind(*p, "linear_element", {"linear", "corotational"}, "linear");
+  s.nonlinear_element = read_kind(*p, "nonlinear_element", {"tled", "anp"}, "tled");
   if (kind == "uniform") {
     s.kind = PartitionKind::uniform;
-    s.uniform_element = read_kind(*p, "element", {"tled", "linear", "corotational"}, default_element);
+    s.uniform_element = read_kind(*p, "element", {"tled", "linear", "corotational", "anp"}, default_element);
   } else if (kind == "layers") {
     s.kind = PartitionKind::layers;
     s.nonlinear_layers = p->get_int32("nonlinear_layers");
@@ -169,9 +170,10 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
     }
   }
   p->reject_unknown();
-  const bool wants_tled = s.kind != PartitionKind::uniform || s.uniform_element == fem::ElementKind::tled;
+  const bool wants_tled = s.kind != PartitionKind::uniform || s.uniform_element == fem::ElementKind::tled ||
+                          s.uniform_element == fem::ElementKind::anp;
   if (c.linear_material && wants_tled)
-    p->fail("a partition without TLED elements (material.model is \"linear\"): use {\"kind\": \"uniform\", "
+    p->fail("a partition without TLED or ANP elements (material.model is \"linear\"): use {\"kind\": \"uniform\", "
             "\"element\": \"linear\" or \"corotational\"}");
 }
 

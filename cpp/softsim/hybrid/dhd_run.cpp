@@ -69,7 +69,9 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
     ++counts[kinds[e]];
   }
   p["element_kind"] = kinds;
-  p["element_kind_legend"] = {"linear", "tled", "corotational"};
+  std::vector<std::string> legend;
+  for (int k = 0; k < fem::kNumElementKinds; ++k) legend.push_back(fem::kind_name(static_cast<fem::ElementKind>(k)));
+  p["element_kind_legend"] = legend;
   p["element_counts"] = {{"linear", counts[0]},
                          {"tled", counts[1]},
                          {"corotational", counts[2]},

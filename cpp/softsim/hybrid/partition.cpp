@@ -99,7 +99,7 @@ std::vector<fem::ElementKind> make_partition(const mesh::TetMesh& mesh, const Pa
     case PartitionKind::uniform: break;
   }
   std::vector<fem::ElementKind> kinds(m);
-  for (int e = 0; e < m; ++e) kinds[e] = op[e] ? fem::ElementKind::tled : spec.linear_element;
+  for (int e = 0; e < m; ++e) kinds[e] = op[e] ? spec.nonlinear_element : spec.linear_element;
   return kinds;
 }
 

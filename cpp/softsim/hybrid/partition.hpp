@@ -1,5 +1,5 @@
 #pragma once
-// Dual-mode partitioning (000 §2.2.1): which elements are nonlinear (TLED, the operational
+// Dual-mode partitioning (000 §2.2.1): which elements are nonlinear (TLED or ANP, the operational
 // region) and which are linear (or corotational, in place of linear). Every strategy first
 // decides the operational set, then assigns kinds.
 #include <optional>
@@ -21,6 +21,7 @@ struct PartitionSpec {
   PartitionKind kind = PartitionKind::uniform;
   fem::ElementKind uniform_element = fem::ElementKind::tled;  // uniform
   fem::ElementKind linear_element = fem::ElementKind::linear;  // what non-operational elements become
+  fem::ElementKind nonlinear_element = fem::ElementKind::tled;  // what operational elements become (tled, anp)
   // layers
   int nonlinear_layers = 0;
   std::string tag = "layer";

@@ -26,7 +26,7 @@ double strain_energy_density(const NeoHookean& law, const Eigen::Matrix3d& F) {
   if (law.form == NeoHookeanForm::paper)
     return 0.5 * law.mu * (I1 - 3.0) - law.mu * std::log(J) + 0.5 * law.lambda * (J - 1.0) * (J - 1.0);
   const double I1bar = std::pow(J, -2.0 / 3.0) * I1;
-  return law.c10() * (I1bar - 3.0) + (J - 1.0) * (J - 1.0) / law.d1();
+  return law.c10() * (I1bar - 3.0) + 0.5 * law.bulk * (J - 1.0) * (J - 1.0);  // (J − 1)²/D1
 }
 
 Eigen::Matrix3d first_piola(const NeoHookean& law, const Eigen::Matrix3d& F) {
@@ -71,6 +71,17 @@ Eigen::Matrix3d first_piola_increment(const NeoHookean& law, const Eigen::Matrix
   const double h = -law.mu * a * I1 / 3.0 + law.bulk * J * (J - 1.0);
   const double dh = -law.mu / 3.0 * (da * I1 + a * dI1) + law.bulk * (2.0 * J - 1.0) * dJ;
   return law.mu * (da * F + a * dF) + dh * FinvT + h * dFinvT;
+}
+
+double volumetric_modulus(const NeoHookean& law) {
+  return law.form == NeoHookeanForm::paper ? law.lambda : law.bulk;
+}
+
+NeoHookean isochoric_part(const NeoHookean& law) {
+  NeoHookean iso = law;
+  iso.lambda = 0.0;
+  iso.bulk = 0.0;
+  return iso;
 }
 
 }  // namespace softsim::material

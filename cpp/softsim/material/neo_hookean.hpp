@@ -45,4 +45,12 @@ Eigen::Matrix3d second_piola(const NeoHookean& law, const Eigen::Matrix3d& C);
 Eigen::Matrix3d first_piola_increment(const NeoHookean& law, const Eigen::Matrix3d& F,
                                       const Eigen::Matrix3d& dF);
 
+// The split W = W_iso(F) + U(J) with U = κ/2 (J − 1)², used by the average-nodal-pressure
+// element (fem/nodal_pressure.hpp), which evaluates U at the nodes instead of the element:
+//   paper      W_iso = μ/2 (I₁ − 3) − μ ln J,  κ = λ
+//   decoupled  W_iso = C10 (Ī₁ − 3),           κ = K
+// `isochoric_part` is the same law with κ = 0, so P, W and dP above give W_iso's.
+double volumetric_modulus(const NeoHookean& law);
+NeoHookean isochoric_part(const NeoHookean& law);
+
 }  // namespace softsim::material
