@@ -4,6 +4,20 @@ from pipeline.reports.stability_common import gather_summary, stale_note
 from pipeline.tables import write_table
 
 
+def deepest_words(explicit):
+    """Which kind went deepest before its first inversion, per probe (from the measured depths)."""
+    words = []
+    for probe in dict.fromkeys(r["probe"] for r in explicit):
+        depth = {r["kind"]: (1.0 if r["exit"] == 0 else r.get("depth_at_failure")) for r in explicit
+                 if r["probe"] == probe}
+        depth = {k: d for k, d in depth.items() if d is not None}
+        if depth:
+            best = max(depth, key=depth.get)
+            words.append(f"under the {probe} probe {best} goes deepest ({depth[best]:.2f} × the height)")
+    text = "; ".join(words)
+    return (text[0].upper() + text[1:] + ". ") if words else ""
+
+
 def report(ctx):
     p = ctx.runs("push")[0].payload
     rows = []
@@ -46,7 +60,8 @@ def report(ctx):
              + ("always with a message that names the step, the element and J. " if clear else
                 "but the " + ", ".join(unclear) + " element is caught one step late, as a non-finite displacement "
                 "(the message names the step and the node, not the inverted element and J). ")
-             + "TLED survives the deepest pushes; the corotational element, which has no volumetric resistance to "
+             + deepest_words(p["explicit"])
+             + "The corotational element, which has no volumetric resistance to "
                "collapse beyond its linear stiffness, inverts first under a point load; linear elements invert "
                "geometrically without noticing it in their forces and are caught at the next energy sample. "
              + "There is no inversion-safe variant (e.g. Irving et al.'s invertible elements) in dhd_sim: a run that "

@@ -272,8 +272,11 @@ TEST(Explicit, UnstableStepIsANumericalError) {
   }
 }
 
-TEST(Explicit, InvertedTledElementNamesStepElementAndJ) {
-  // A huge force on one free corner drives it through the opposite face within a few steps.
+class Inversion : public ::testing::TestWithParam<ElementKind> {};
+
+TEST_P(Inversion, InvertedElementNamesStepElementAndJ) {
+  // A huge force on one free corner drives it through the opposite face within a few steps; the
+  // failure must name the element and J, not a non-finite displacement one step later.
   const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
   const fem::Material mat = fem::Material::make(kPaper, material::NeoHookeanForm::paper);
   dynamics::Scene scene;
@@ -286,15 +289,20 @@ TEST(Explicit, InvertedTledElementNamesStepElementAndJ) {
   dynamics::ExplicitOptions opt;
   opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
   opt.steps = 200;
+  const std::string kind = fem::kind_name(GetParam());
   try {
-    run_explicit(m, std::vector<ElementKind>(m.num_tets(), ElementKind::tled), mat, scene, opt);
+    run_explicit(m, std::vector<ElementKind>(m.num_tets(), GetParam()), mat, scene, opt);
     ADD_FAILURE() << "the element must invert";
   } catch (const NumericalError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("explicit step"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("(tled) is inverted: J = "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(" + kind + ") is inverted: J = "), std::string::npos) << msg;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(NonlinearKinds, Inversion,
+                         ::testing::Values(ElementKind::tled, ElementKind::corotational, ElementKind::anp),
+                         [](const auto& info) { return std::string(fem::kind_name(info.param)); });
 
 class UniaxialCompression : public ::testing::TestWithParam<material::NeoHookeanForm> {};
 

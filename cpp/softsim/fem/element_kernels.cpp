@@ -291,7 +291,9 @@ void corotational_kernel(const SoaView s, const double* __restrict u, int begin,
                (n20 - x20) * (n20 - x20) + (n21 - x21) * (n21 - x21) + (n22 - x22) * (n22 - x22);
       x00 = n00, x01 = n01, x02 = n02, x10 = n10, x11 = n11, x12 = n12, x20 = n20, x21 = n21, x22 = n22;
     }
-    const double flag = J > 0 ? change : 1.0;
+    // 0 = converged; anything else (not converged, inverted, or NaN from a degenerate iterate,
+    // which max() would silently drop) sends the element to the exact path.
+    const double flag = J > 0 && change <= kPolarConverged ? 0.0 : 1.0;
     last_update[k] = flag;
     worst = std::max(worst, flag);
     // S = Rᵀ F (symmetrised), σ = 2μ (S − I) + λ tr(S − I) I, ⁰V P = ⁰V R σ.
