@@ -45,5 +45,24 @@ def run_benchmarks(filter_regex: str = "") -> int:
                     f"library build type {ctx.get('library_build_type', '?')}.\n")
     (out_dir / "README.md").write_text("\n".join(sections))
     summary = ["## Benchmarks\n", "Raw Google Benchmark tables: [bench/README.md](bench/README.md).\n"]
+    summary += kernel_ratios(out_dir / "bench_dhd.json")
     (out_dir / "summary.md").write_text("\n".join(summary))
     return status
+
+
+def kernel_ratios(path):
+    """Element-kernel cost per element relative to the TLED kernel, from one bench_dhd run (000's
+    paper mesh, one thread): the issue's "linear ≤ 0.3× TLED" and the memory floor that bounds it."""
+    if not path.exists():
+        return []
+    times = {b["name"]: b["real_time"] for b in json.loads(path.read_text()).get("benchmarks", [])
+             if b.get("run_type") != "aggregate"}
+    tled = times.get("BM_Kernel/partition:0")
+    if not tled:
+        return []
+    names = [("BM_Kernel/partition:2", "linear"), ("BM_MemoryFloorKernel", "memory floor (same loads and stores, no mechanics)"),
+             ("BM_Kernel/partition:1", "TLED, decoupled form"), ("BM_Kernel/partition:4", "ANP (decoupled form, with its pre-pass)"),
+             ("BM_Kernel/partition:3", "corotational")]
+    rows = [[label, fmt(times[name] / tled)] for name, label in names if name in times]
+    return ["Element kernels on the paper mesh, cost per element relative to the TLED kernel (paper form), "
+            "measured in one run of `bench_dhd`:\n", markdown_table(["kernel", "× TLED"], rows)]

@@ -3,10 +3,12 @@
 //   BM_Steps      explicit steps per second for all-TLED (both neo-Hookean forms), all-linear,
 //                 all-corotational and a linear share r, on 1 and 2 threads;
 //   BM_Kernel     the element kernel alone: elements per second of each kind (1e9 / rate = ns per
-//                 element).
+//                 element; for ANP including its nodal-pressure pre-pass);
+//   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic.
 // Scene: bottom fixed, the top-centre node pushed down (the paper's error scene, Fig. 10).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <memory>
 
 #include "softsim/dynamics/explicit_solver.hpp"
@@ -38,13 +40,15 @@ const mesh::TetMesh& paper_mesh() {
 const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};  // 000 §3.1
 
 // Partition codes: 0 all TLED (paper form), 1 all TLED (decoupled form), 2 all linear,
-// 3 all corotational, 10..19 linear share r = (code − 10) / 10 with TLED elsewhere.
+// 3 all corotational, 4 all ANP (decoupled form), 10..19 linear share r = (code − 10) / 10 with
+// TLED elsewhere.
 std::vector<ElementKind> partition(int code) {
   const auto& m = paper_mesh();
   hybrid::PartitionSpec spec;
   if (code <= 1) spec.uniform_element = ElementKind::tled;
   if (code == 2) spec.uniform_element = ElementKind::linear;
   if (code == 3) spec.uniform_element = ElementKind::corotational;
+  if (code == 4) spec.uniform_element = ElementKind::anp;
   if (code >= 10) {
     spec.kind = hybrid::PartitionKind::linear_fraction;
     spec.linear_fraction = (code - 10) / 10.0;
@@ -53,7 +57,7 @@ std::vector<ElementKind> partition(int code) {
 }
 
 material::NeoHookeanForm form(int code) {
-  return code == 1 ? material::NeoHookeanForm::decoupled : material::NeoHookeanForm::paper;
+  return code == 1 || code == 4 ? material::NeoHookeanForm::decoupled : material::NeoHookeanForm::paper;
 }
 
 void BM_Steps(benchmark::State& state) {
@@ -112,7 +116,7 @@ void BM_Kernel(benchmark::State& state) {
   state.counters["elements_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * m.num_tets(), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMicrosecond);
 
 // The literal reading of "a precomputed 12 × 12 stiffness block times the element's
 // displacements" for linear elements, for comparison with BM_Kernel/partition:2 (the same
@@ -150,5 +154,49 @@ void BM_LinearBlockKernel(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()) * ne, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_LinearBlockKernel)->Unit(benchmark::kMicrosecond);
+
+// The memory floor of any element kernel with the engine's data path: the same loads (4 node
+// offsets, 12 gathered displacements, 9 gradients and the volume per element) and the same 12
+// component-major stores, with a single add per output in place of the mechanics. Its rate
+// bounds what a cheaper linear element could reach without a different data layout: compare
+// with BM_Kernel/partition:2 (linear) and partition:0 (TLED).
+void BM_MemoryFloorKernel(benchmark::State& state) {
+  const auto& m = paper_mesh();
+  const int ne = m.num_tets();
+  const int stride = (ne + 7) / 8 * 8;
+  std::array<std::vector<int>, 4> n;
+  std::array<std::vector<double>, 10> g;  // 9 gradients and the volume
+  for (auto& v : n) v.assign(stride, 0);
+  for (auto& v : g) v.assign(stride, 0.0);
+  for (int e = 0; e < ne; ++e) {
+    const fem::TetShape sh = fem::tet_shape(m, e);
+    for (int a = 0; a < 4; ++a) n[a][e] = 3 * m.tets[e][a];
+    for (int a = 1; a < 4; ++a)
+      for (int c = 0; c < 3; ++c) g[3 * (a - 1) + c][e] = sh.grad[a][c];
+    g[9][e] = sh.volume;
+  }
+  std::vector<double> u(3 * m.nodes.size()), out(static_cast<std::size_t>(12) * stride);
+  for (std::size_t q = 0; q < u.size(); ++q) u[q] = 1e-4 * static_cast<double>(q % 17);
+  const int* __restrict n0 = n[0].data();
+  const int* __restrict n1 = n[1].data();
+  const int* __restrict n2 = n[2].data();
+  const int* __restrict n3 = n[3].data();
+  const double* __restrict uu = u.data();
+  double* __restrict o = out.data();
+  for (auto _ : state) {
+#if defined(SOFTSIM_HAVE_OPENMP)
+#pragma omp simd
+#endif
+    for (int k = 0; k < stride; ++k) {
+      const int a[4] = {n0[k], n1[k], n2[k], n3[k]};
+      for (int c = 0; c < 12; ++c) o[static_cast<std::size_t>(c) * stride + k] = uu[a[c / 3] + c % 3] + g[c % 10][k];
+    }
+    benchmark::DoNotOptimize(o);
+    benchmark::ClobberMemory();
+  }
+  state.counters["elements_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * ne, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_MemoryFloorKernel)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -106,7 +106,7 @@ void linear_kernel(const SoaView s, const double* __restrict u, int begin, int e
 namespace {
 
 template <bool kAveraged>
-void paper_form_kernel(const SoaView& s, const double* __restrict u, int begin, int end, double mu, double lambda,
+void paper_form_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double lambda,
                        const double* __restrict pressure, double& min_j, double& max_j) {
   double jmin = min_j, jmax = max_j;
   SOFTSIM_SIMD_MINMAX
@@ -183,7 +183,7 @@ void tled_decoupled_body(const SoaView& s, const double* __restrict u, int k, do
 }
 
 template <bool kAveraged>
-void decoupled_form_kernel(const SoaView& s, const double* __restrict u, int begin, int end, double mu,
+void decoupled_form_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
                            double bulk, const double* __restrict pressure, double* __restrict volume_ratio,
                            double& min_j, double& max_j) {
   double jmin = min_j, jmax = max_j;
