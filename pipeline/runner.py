@@ -92,11 +92,16 @@ class Runner:
         # A python stage that drives our executables names them in TOOLS: their binaries
         # belong to its key exactly like a tool stage's binary.
         if run.kind == "python":
-            for tool in getattr(importlib.import_module(run.target), "TOOLS", ()):
+            module = importlib.import_module(run.target)
+            for tool in getattr(module, "TOOLS", ()):
                 binary = BIN / tool
                 if not binary.exists():
                     raise RunFailed(run.id, 2, f"no executable {rel(binary)} (run `make build`)")
                 hashes.append(file_hash(binary))
+            # Repository folders it reads (DATA): every file's path and content.
+            for folder in getattr(module, "DATA", ()):
+                for f in sorted(p for p in (ROOT / folder).rglob("*") if p.is_file()):
+                    hashes.append([rel(f), file_hash(f)])
         return sha256_json(hashes)
 
     def _dep_outcome(self, exp, rid) -> Outcome:

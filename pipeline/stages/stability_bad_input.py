@@ -8,6 +8,8 @@ Config: {"inputs": {"@MESH@": artifact, "@DATASET_X@": ..., "@FIT@": ...}}
 """
 # Executables this stage runs: part of its cache key (pipeline/runner.py).
 TOOLS = ("mesher", "dhd_sim", "rpim_precompute", "marquardt_fit", "async_sim")
+# Repository folders this stage reads: part of its cache key too.
+DATA = ("tests/bad_input",)
 
 import json
 import subprocess
