@@ -28,6 +28,9 @@ def run_benchmarks(filter_regex: str = "") -> int:
             status = 1
             continue
         data = json.loads(out.read_text())
+        # The build folder's absolute path is this machine's business: keep it relative.
+        data.setdefault("context", {})["executable"] = exe.name
+        out.write_text(json.dumps(data, indent=2) + "\n")
         rows = []
         for b in data.get("benchmarks", []):
             if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "mean":

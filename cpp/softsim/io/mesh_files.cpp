@@ -77,8 +77,9 @@ std::string obj_to_stl(const std::string& text, const std::string& source) {
 mesh::TetMesh mesh_surface_with_gmsh(const std::string& path, const MeshFileOptions& opt) {
   const std::string ext = extension_of(path);
   const std::string text = read_text_file(path);
-  char dir_template[] = "/tmp/softsim-gmsh-XXXXXX";
-  const char* dir = ::mkdtemp(dir_template);
+  // The system's temporary folder (TMPDIR honoured), not a fixed path.
+  std::string dir_template = (fs::temp_directory_path() / "softsim-gmsh-XXXXXX").string();
+  const char* dir = ::mkdtemp(dir_template.data());
   if (!dir) throw std::runtime_error("cannot create a temporary directory for gmsh");
   const fs::path work(dir);
   const fs::path stl = work / "surface.stl";
