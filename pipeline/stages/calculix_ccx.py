@@ -148,6 +148,20 @@ def fmt(x: float) -> str:
     return text
 
 
+def mesh_lines(positions, element_type: str, elements) -> list:
+    """*NODE (set NALL) and *ELEMENT (set EALL) lines; `elements` hold 1-based node ids."""
+    L = ["*NODE, NSET=NALL"]
+    L += [f"{n + 1}, {fmt(x)}, {fmt(y)}, {fmt(z)}" for n, (x, y, z) in enumerate(positions)]
+    L.append(f"*ELEMENT, TYPE={element_type}, ELSET=EALL")
+    for e, conn in enumerate(elements):
+        ids = [str(e + 1)] + [str(n) for n in conn]
+        # A data line holds at most 16 entries; C3D20 continues on the next line.
+        L.append(", ".join(ids[:16]) + ("," if len(ids) > 16 else ""))
+        if len(ids) > 16:
+            L.append(", ".join(ids[16:]))
+    return L
+
+
 def nset_lines(name: str, ccx_nodes) -> list:
     lines = [f"*NSET, NSET={name}"]
     ids = [str(n) for n in ccx_nodes]

@@ -42,7 +42,7 @@ import numpy as np
 from pipeline.artifacts import write_artifact
 from pipeline.stages import stability_fem as fem
 from pipeline.stages.calculix import solve_tet_mesh
-from pipeline.stages.calculix_ccx import (fmt, last_block, nset_lines, parse_dat, run_deck, sorted_rows,
+from pipeline.stages.calculix_ccx import (fmt, last_block, mesh_lines, nset_lines, parse_dat, run_deck, sorted_rows,
                                           static_step_lines)
 from pipeline.stages.calculix_plate import PlateMesh
 from pipeline.stages.stability_common import read_payload, run_tool, tool_hashes
@@ -103,14 +103,8 @@ def ccx_hex_deck(box, divisions, element_type, E, nu, pressure, scene, half_widt
     tol = 1e-9 * max(box)
     axis = 0 if scene == "cantilever" else 2
     fixed = [i + 1 for i in np.flatnonzero(np.abs(P[:, axis]) <= tol)]
-    L = [f"** pipeline.stages.stability_incompressible: {scene} under top pressure", "*NODE, NSET=NALL"]
-    L += [f"{n + 1}, {fmt(x)}, {fmt(y)}, {fmt(z)}" for n, (x, y, z) in enumerate(P)]
-    L.append(f"*ELEMENT, TYPE={element_type}, ELSET=EALL")
-    for e, conn in enumerate(mesh.elements):
-        ids = [str(e + 1)] + [str(n) for n in conn]
-        L.append(", ".join(ids[:16]) + ("," if len(ids) > 16 else ""))
-        if len(ids) > 16:
-            L.append(", ".join(ids[16:]))
+    L = [f"** pipeline.stages.stability_incompressible: {scene} under top pressure"]
+    L += mesh_lines(P, element_type, mesh.elements)
     nx, ny, nz = divisions
     dx, dy = box[0] / nx, box[1] / ny
     center = (0.5 * box[0], 0.5 * box[1])

@@ -21,6 +21,7 @@
 #include "softsim/fem/element_set.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/fields.hpp"
 #include "support/scenes.hpp"
 
 using namespace softsim;
@@ -29,17 +30,13 @@ using material::NeoHookeanForm;
 
 namespace {
 
+using test_scenes::affine_field;
+using test_scenes::constraint;
 using test_scenes::cuboid;
+using test_scenes::energy_drift;
+using test_scenes::gathered_forces;
 using test_scenes::kPaper;
-
-std::vector<double> affine_field(const mesh::TetMesh& m, const Eigen::Matrix3d& F) {
-  std::vector<double> u(3 * m.nodes.size());
-  for (int i = 0; i < m.num_nodes(); ++i) {
-    const Eigen::Vector3d d = (F - Eigen::Matrix3d::Identity()) * m.nodes[i];
-    for (int k = 0; k < 3; ++k) u[3 * i + k] = d[k];
-  }
-  return u;
-}
+using test_scenes::max_abs;
 
 // A non-homogeneous state: stretch and shear plus random nodal noise (J from about 0.8 to 1.2).
 std::vector<double> rough_field(const mesh::TetMesh& m, unsigned seed, double noise) {
@@ -52,14 +49,6 @@ std::vector<double> rough_field(const mesh::TetMesh& m, unsigned seed, double no
   return u;
 }
 
-std::vector<double> set_forces(fem::ElementSet& set, const std::vector<double>& u) {
-  fem::KernelStats st;
-  set.compute(u.data(), 0, set.padded_size(), st);
-  std::vector<double> f(u.size());
-  for (int i = 0; i < set.num_nodes(); ++i) set.gather(i, &f[3 * i]);
-  return f;
-}
-
 // ANP in the middle layers, the other kinds around it: interfaces of every pair.
 std::vector<ElementKind> mixed_kinds(const mesh::TetMesh& m) {
   std::vector<ElementKind> kinds(m.num_tets());
@@ -69,20 +58,6 @@ std::vector<ElementKind> mixed_kinds(const mesh::TetMesh& m) {
                : e % 9 == 0  ? ElementKind::corotational
                              : ElementKind::anp;
   return kinds;
-}
-
-dynamics::DisplacementConstraint constraint(const mesh::TetMesh& m, const std::string& set, Eigen::Vector3d d) {
-  dynamics::DisplacementConstraint c;
-  c.name = set;
-  c.nodes = m.node_sets.at(set);
-  c.displacement = d;
-  return c;
-}
-
-double max_abs(const std::vector<double>& v) {
-  double m = 0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
 }
 
 class Forms : public ::testing::TestWithParam<NeoHookeanForm> {};
@@ -99,7 +74,7 @@ TEST_P(Forms, HomogeneousDeformationMakesAnpExactlyTled) {
   Eigen::Matrix3d F;
   F << 0.8, 0.1, 0.0, -0.05, 1.1, 0.07, 0.02, 0.0, 0.9;
   const auto u = affine_field(m, F);
-  const auto fa = set_forces(anp, u), ft = set_forces(tled, u);
+  const auto fa = gathered_forces(anp, u), ft = gathered_forces(tled, u);
   const double scale = max_abs(ft);
   ASSERT_GT(scale, 0);
   for (std::size_t q = 0; q < fa.size(); ++q) EXPECT_NEAR(fa[q], ft[q], 1e-12 * scale) << "dof " << q;
@@ -143,7 +118,7 @@ TEST_P(Forms, ExplicitPathEqualsTheReferenceAssemblyInAMixedMesh) {
   fem::ElementSet set(m, kinds, mat, 16);
   const fem::Assembler as(m, kinds, mat);
   const std::vector<double> u = rough_field(m, 5, 0.001);
-  const auto f = set_forces(set, u);
+  const auto f = gathered_forces(set, u);
   Eigen::VectorXd fr;
   as.internal_forces(u.data(), fr);
   const double scale = fr.lpNorm<Eigen::Infinity>();
@@ -181,15 +156,10 @@ TEST(AnpExplicit, UndampedFreeVibrationConservesEnergy) {
   dynamics::ExplicitSolver solver(set, dynamics::lumped_mass(m, soft.density), free, opt);
   solver.set_initial_state(stat.displacement, {});
   const auto r = solver.run();
-  const double E0 = r.energies.front().kinetic + r.energies.front().strain;
   EXPECT_NEAR(r.energies.front().strain, stat.strain_energy, 1e-9 * stat.strain_energy);
-  double worst = 0, max_kinetic = 0;
-  for (const auto& s : r.energies) {
-    worst = std::max(worst, std::abs(s.kinetic + s.strain - E0) / E0);
-    max_kinetic = std::max(max_kinetic, s.kinetic);
-  }
-  EXPECT_LT(worst, 2e-3);
-  EXPECT_GT(max_kinetic, 0.5 * E0) << "the block must actually vibrate";
+  const auto drift = energy_drift(r);
+  EXPECT_LT(drift.worst, 2e-3);
+  EXPECT_GT(drift.max_kinetic, 0.5 * drift.initial) << "the block must actually vibrate";
 }
 
 TEST(AnpExplicit, DampedRunSettlesOnTheStaticSolutionBitIdenticallyOnOneAndTwoThreads) {

@@ -17,6 +17,7 @@
 #include "softsim/fem/element_set.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/fields.hpp"
 #include "support/scenes.hpp"
 
 using namespace softsim;
@@ -24,26 +25,10 @@ using fem::ElementKind;
 
 namespace {
 
+using test_scenes::affine_field;
 using test_scenes::cuboid;
+using test_scenes::gathered_forces;
 using test_scenes::kPaper;
-
-// u = (F − I) X at every node.
-std::vector<double> affine_field(const mesh::TetMesh& m, const Eigen::Matrix3d& F) {
-  std::vector<double> u(3 * m.nodes.size());
-  for (int i = 0; i < m.num_nodes(); ++i) {
-    const Eigen::Vector3d d = (F - Eigen::Matrix3d::Identity()) * m.nodes[i];
-    for (int k = 0; k < 3; ++k) u[3 * i + k] = d[k];
-  }
-  return u;
-}
-
-std::vector<double> gathered_forces(fem::ElementSet& set, const std::vector<double>& u) {
-  fem::KernelStats st;
-  set.compute(u.data(), 0, set.padded_size(), st);
-  std::vector<double> f(u.size());
-  for (int i = 0; i < set.num_nodes(); ++i) set.gather(i, &f[3 * i]);
-  return f;
-}
 
 std::vector<int> interior_nodes(const mesh::TetMesh& m) {
   const auto& b = m.node_sets.at("boundary");

@@ -107,9 +107,6 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
     }
     return pi;
   };
-  auto lowers_energy = [&](double lambda, const Eigen::VectorXd& uu, double before) {
-    return potential(lambda, uu) < before;
-  };
 
   for (int inc = 1; inc <= opt.increments; ++inc) {
     const double lambda = static_cast<double>(inc) / opt.increments;
@@ -172,7 +169,7 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
           for (const auto& d : dofs) trial[3 * d.node + d.component] = target[3 * d.node + d.component];
         if (assembler.min_volume_ratio(trial.data()) <= 0) continue;
         residual(lambda, trial, r_trial, trial_scale);
-        if (jump > 0 || free_norm2(r_trial) <= old_norm || ls >= 8 || lowers_energy(lambda, trial, old_energy)) {
+        if (jump > 0 || free_norm2(r_trial) <= old_norm || ls >= 8 || potential(lambda, trial) < old_energy) {
           accepted = true;
           break;
         }

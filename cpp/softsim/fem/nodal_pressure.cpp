@@ -146,21 +146,14 @@ void NodalPressure::add_tangent(const double* u, Eigen::SparseMatrix<double>& K)
   if (empty_) return;
   const int m = static_cast<int>(tets_.size());
   std::vector<Eigen::Matrix3d> F(m), cof(m);
-  std::vector<double> je(m, 1.0);
   for (int e = 0; e < m; ++e)
     if (kinds_[e] == ElementKind::anp) {
       F[e] = element_gradient(e, u);
       cof[e] = cofactor(F[e]);
-      je[e] = F[e].determinant();
     }
-  const int n = static_cast<int>(nodal_.volume.size());
-  std::vector<double> J(n, 1.0);
-  for (int a = 0; a < n; ++a)
-    if (nodal_.begin[a] < nodal_.begin[a + 1]) {
-      double s = 0;
-      for (int p = nodal_.begin[a]; p < nodal_.begin[a + 1]; ++p) s += nodal_.weight[p] * je[nodal_.element[p]];
-      J[a] = s;
-    }
+  std::vector<double> J;
+  nodal_volume_ratios(u, J);
+  const int n = static_cast<int>(J.size());
   // Element term: ⁰V_e p̄_e d(cof F_e)[e_k ⊗ ∇N_b] ∇N_a.
   for (int e = 0; e < m; ++e) {
     if (kinds_[e] != ElementKind::anp) continue;
