@@ -6,19 +6,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fuzz_json.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/json_reader.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/mesh/surface.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
   nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {
-    return 0;
-  }
+  if (!parse_fuzz_json(data, size, doc)) return 0;
   try {
     const softsim::io::JsonReader payload(doc, "fuzz.json");
     const auto mesh = softsim::io::mesh_from_json(payload);

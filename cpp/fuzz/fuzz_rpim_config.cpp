@@ -7,18 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fuzz_json.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/json_reader.hpp"
 #include "softsim/meshless/rpim_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
   nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {
-    return 0;
-  }
+  if (!parse_fuzz_json(data, size, doc)) return 0;
   using softsim::io::JsonReader;
   namespace ml = softsim::meshless;
   const JsonReader cfg(doc, "fuzz.json");
