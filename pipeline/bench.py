@@ -54,18 +54,26 @@ def run_benchmarks(filter_regex: str = "") -> int:
 
 
 def kernel_ratios(path):
-    """Element-kernel cost per element relative to the TLED kernel, from one bench_dhd run (000's
-    paper mesh, one thread): the issue's "linear ≤ 0.3× TLED" and the memory floor that bounds it."""
+    """Cost per element of each kind relative to TLED, from one bench_dhd run (000's paper mesh,
+    one thread): the issue's "linear ≤ 0.3× TLED", first for the complete nodal forces, then for
+    the element phase alone with the memory floor of the per-element data path."""
     if not path.exists():
         return []
     times = {b["name"]: b["real_time"] for b in json.loads(path.read_text()).get("benchmarks", [])
              if b.get("run_type") != "aggregate"}
-    tled = times.get("BM_Kernel/partition:0")
-    if not tled:
-        return []
-    names = [("BM_Kernel/partition:2", "linear"), ("BM_MemoryFloorKernel", "memory floor (same loads and stores, no mechanics)"),
-             ("BM_Kernel/partition:1", "TLED, decoupled form"), ("BM_Kernel/partition:4", "ANP (decoupled form, with its pre-pass)"),
-             ("BM_Kernel/partition:3", "corotational")]
-    rows = [[label, fmt(times[name] / tled)] for name, label in names if name in times]
-    return ["Element kernels on the paper mesh, cost per element relative to the TLED kernel (paper form), "
-            "measured in one run of `bench_dhd`:\n", markdown_table(["kernel", "× TLED"], rows)]
+    sections = []
+    kinds = [("2", "linear, assembled rows (the engine's default)"), ("5", "linear, element by element"),
+             ("1", "TLED, decoupled form"), ("4", "ANP (decoupled form, with its pre-pass)"), ("3", "corotational")]
+    for family, title, extra in [
+            ("BM_NodalForces", "Internal nodal forces from the displacements (element phase and the nodal sums of "
+             "000 eq. 23)", []),
+            ("BM_Kernel", "Element phase alone (for assembled linear elements: the rows of every node)",
+             [("BM_MemoryFloorKernel", "memory floor of the per-element path (same loads and stores, no mechanics)")])]:
+        tled = times.get(f"{family}/partition:0")
+        if not tled:
+            continue
+        names = [(f"{family}/partition:{code}", label) for code, label in kinds] + extra
+        rows = [[label, fmt(times[name] / tled)] for name, label in names if name in times]
+        sections += [f"{title} on the paper mesh, cost per element relative to TLED (paper form), "
+                     "measured in one run of `bench_dhd`:\n", markdown_table(["kind", "× TLED"], rows)]
+    return sections

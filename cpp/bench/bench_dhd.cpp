@@ -2,8 +2,12 @@
 // 14450 tetrahedra = mesh::make_cuboid with cells {17, 17, 10}), double precision:
 //   BM_Steps      explicit steps per second for all-TLED (both neo-Hookean forms), all-linear,
 //                 all-corotational and a linear share r, on 1 and 2 threads;
-//   BM_Kernel     the element kernel alone: elements per second of each kind (1e9 / rate = ns per
-//                 element; for ANP including its nodal-pressure pre-pass);
+//   BM_Kernel     the element phase alone: elements per second of each kind (1e9 / rate = ns per
+//                 element; for ANP including its nodal-pressure pre-pass, for assembled linear
+//                 elements the rows of every node);
+//   BM_NodalForces  the element phase and the nodal sums: the complete internal forces, per
+//                 element of each kind (what a linear element costs against a TLED one);
+//   BM_LinearRows the assembled linear rows alone, streamed and cache-resident;
 //   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic.
 // Scene: bottom fixed, the top-centre node pushed down (the paper's error scene, Fig. 10).
 #include <benchmark/benchmark.h>
@@ -16,6 +20,7 @@
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/fem/element_response.hpp"
 #include "softsim/fem/element_set.hpp"
+#include "softsim/fem/linear_rows.hpp"
 #include "softsim/hybrid/dhd_run.hpp"
 #include "softsim/hybrid/partition.hpp"
 #include "softsim/mesh/cuboid.hpp"
@@ -39,14 +44,14 @@ const mesh::TetMesh& paper_mesh() {
 
 const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};  // 000 §3.1
 
-// Partition codes: 0 all TLED (paper form), 1 all TLED (decoupled form), 2 all linear,
-// 3 all corotational, 4 all ANP (decoupled form), 10..19 linear share r = (code − 10) / 10 with
-// TLED elsewhere.
+// Partition codes: 0 all TLED (paper form), 1 all TLED (decoupled form), 2 all linear
+// (assembled rows), 3 all corotational, 4 all ANP (decoupled form), 5 all linear element by
+// element, 10..19 linear share r = (code − 10) / 10 with TLED elsewhere.
 std::vector<ElementKind> partition(int code) {
   const auto& m = paper_mesh();
   hybrid::PartitionSpec spec;
   if (code <= 1) spec.uniform_element = ElementKind::tled;
-  if (code == 2) spec.uniform_element = ElementKind::linear;
+  if (code == 2 || code == 5) spec.uniform_element = ElementKind::linear;
   if (code == 3) spec.uniform_element = ElementKind::corotational;
   if (code == 4) spec.uniform_element = ElementKind::anp;
   if (code >= 10) {
@@ -60,12 +65,33 @@ material::NeoHookeanForm form(int code) {
   return code == 1 || code == 4 ? material::NeoHookeanForm::decoupled : material::NeoHookeanForm::paper;
 }
 
+fem::LinearForces linear_forces(int code) {
+  return code == 5 ? fem::LinearForces::per_element : fem::LinearForces::assembled;
+}
+
+fem::ElementSet element_set(int code, int tile_nodes = 128) {
+  return fem::ElementSet(paper_mesh(), partition(code), fem::Material::make(kPaper, form(code)), tile_nodes,
+                         linear_forces(code));
+}
+
+// A deformed state: a 20 % shear with a 30° rotation, so the corotational polar decomposition
+// does real work.
+std::vector<double> deformed_state() {
+  const auto& m = paper_mesh();
+  Eigen::Matrix3d F;
+  F << 1.0, 0.2, 0.0, 0.0, 0.95, 0.0, 0.0, 0.0, 1.05;
+  F = Eigen::AngleAxisd(0.5, Eigen::Vector3d(0, 0, 1)).toRotationMatrix() * F;
+  std::vector<double> u(3 * m.nodes.size());
+  for (int i = 0; i < m.num_nodes(); ++i)
+    for (int k = 0; k < 3; ++k) u[3 * i + k] = ((F - Eigen::Matrix3d::Identity()) * m.nodes[i])[k];
+  return u;
+}
+
 void BM_Steps(benchmark::State& state) {
   const int code = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const auto& m = paper_mesh();
-  const fem::Material mat = fem::Material::make(kPaper, form(code));
-  fem::ElementSet elements(m, partition(code), mat);
+  fem::ElementSet elements = element_set(code);
   dynamics::ExplicitOptions opt;
   opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
   opt.steps = kStepsPerIteration;
@@ -90,33 +116,65 @@ void BM_Steps(benchmark::State& state) {
 
 void steps_args(benchmark::internal::Benchmark* b) {
   for (int threads : {1, 2})
-    for (int code : {0, 1, 2, 3, 15}) b->Args({code, threads});
+    for (int code : {0, 1, 2, 3, 5, 15}) b->Args({code, threads});
   for (int code : {11, 12, 13, 14}) b->Args({code, 1});  // Table 1's shares of linear elements
 }
 BENCHMARK(BM_Steps)->Apply(steps_args)->ArgNames({"partition", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
 
-// One element phase over all elements of one kind, on a deformed state (a 20 % shear with a
-// 30° rotation, so the corotational polar decomposition does real work).
+// One element phase over all elements of one kind, on a deformed state.
 void BM_Kernel(benchmark::State& state) {
   const int code = static_cast<int>(state.range(0));
-  const auto& m = paper_mesh();
-  fem::ElementSet elements(m, partition(code), fem::Material::make(kPaper, form(code)));
-  Eigen::Matrix3d F;
-  F << 1.0, 0.2, 0.0, 0.0, 0.95, 0.0, 0.0, 0.0, 1.05;
-  F = Eigen::AngleAxisd(0.5, Eigen::Vector3d(0, 0, 1)).toRotationMatrix() * F;
-  std::vector<double> u(3 * m.nodes.size());
-  for (int i = 0; i < m.num_nodes(); ++i)
-    for (int k = 0; k < 3; ++k) u[3 * i + k] = ((F - Eigen::Matrix3d::Identity()) * m.nodes[i])[k];
+  fem::ElementSet elements = element_set(code);
+  const std::vector<double> u = deformed_state();
   for (auto _ : state) {
     fem::KernelStats st;
     elements.compute(u.data(), 0, elements.padded_size(), st);
     benchmark::DoNotOptimize(st.min_j);
   }
   // Elements per second; nanoseconds per element = 1e9 / elements_per_s.
-  state.counters["elements_per_s"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * m.num_tets(), benchmark::Counter::kIsRate);
+  state.counters["elements_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * paper_mesh().num_tets(),
+                                                        benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+
+// The complete internal nodal forces from the displacements (element phase and the nodal sums
+// of 000 eq. 23), all elements of one kind: the per-element cost the kinds compare by, since an
+// element's corner forces are only useful once summed at the nodes.
+void BM_NodalForces(benchmark::State& state) {
+  const int code = static_cast<int>(state.range(0));
+  fem::ElementSet elements = element_set(code);
+  const std::vector<double> u = deformed_state();
+  std::vector<double> f(u.size());
+  for (auto _ : state) {
+    fem::KernelStats st;
+    elements.compute(u.data(), 0, elements.padded_size(), st);
+    for (int i = 0; i < elements.num_nodes(); ++i) elements.gather(i, &f[3 * static_cast<std::size_t>(i)]);
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.counters["elements_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * paper_mesh().num_tets(),
+                                                        benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_NodalForces)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+
+// The assembled linear rows of the paper mesh, all nodes once (as in BM_Kernel/partition:2), and
+// the same number of row products over the first eighth of the nodes eight times, whose blocks
+// stay in the L2 cache: the ratio tells how much of the row product is streaming the matrix.
+void BM_LinearRows(benchmark::State& state) {
+  const int repeats = static_cast<int>(state.range(0));
+  const auto& m = paper_mesh();
+  const fem::LinearStiffnessRows rows(m, std::vector<ElementKind>(m.num_tets(), ElementKind::linear),
+                                      fem::Material::make(kPaper, material::NeoHookeanForm::paper));
+  const std::vector<double> u = deformed_state();
+  std::vector<double> f(u.size());
+  const int span = m.num_nodes() / repeats;
+  for (auto _ : state) {
+    for (int r = 0; r < repeats; ++r)
+      for (int a = 0; a < span; ++a) rows.multiply_row(a, u.data(), &f[3 * static_cast<std::size_t>(a)]);
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.counters["blocks"] = rows.num_blocks();
+}
+BENCHMARK(BM_LinearRows)->ArgName("repeats")->Arg(1)->Arg(8)->Unit(benchmark::kMicrosecond);
 
 // The literal reading of "a precomputed 12 × 12 stiffness block times the element's
 // displacements" for linear elements, for comparison with BM_Kernel/partition:2 (the same

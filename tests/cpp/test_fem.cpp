@@ -272,29 +272,9 @@ TEST(ElementSet, DecoupledKernelIsExactOutsideTheNewtonRootRange) {
 }
 
 TEST(ElementSet, TiledSweepUpdatesEachNodeOnceAfterAllItsElements) {
-  // Computing the tiles in order and gathering each node right after its ready tile must give
-  // exactly the forces of a full element pass (a node gathered too early would miss the
-  // contribution of a later element, as the buffer of a fresh set starts at zero).
   const auto m = cuboid(5, 4, 3, 0.05, 0.04, 0.03);
   std::vector<ElementKind> kinds(m.num_tets());
   for (int e = 0; e < m.num_tets(); ++e) kinds[e] = static_cast<ElementKind>((3 * e + e / 7) % 3);
-  const fem::Material mat = fem::Material::make(kPaper, material::NeoHookeanForm::paper);
-  const std::vector<double> u = affine_field(m, general_F());
-  fem::ElementSet full(m, kinds, mat, 16);
-  const std::vector<double> expected = gathered_forces(full, u);
-  fem::ElementSet tiled(m, kinds, mat, 16);
-  ASSERT_GT(tiled.num_tiles(), 4);
-  std::vector<double> f(u.size(), 0.0);
-  std::vector<int> seen(m.num_nodes(), 0);
-  for (int t = 0; t < tiled.num_tiles(); ++t) {
-    fem::KernelStats st;
-    tiled.compute_tile(u.data(), t, st);
-    for (const int* n = tiled.ready_nodes_begin(t); n != tiled.ready_nodes_end(t); ++n) {
-      tiled.gather(*n, &f[3 * *n]);
-      ++seen[*n];
-      EXPECT_LE(tiled.first_tile(*n), t);
-    }
-  }
-  for (int i = 0; i < m.num_nodes(); ++i) EXPECT_EQ(seen[i], 1) << "node " << i;
-  EXPECT_EQ(f, expected);
+  test_scenes::expect_tiled_sweep_equals_whole_pass(
+      m, kinds, fem::Material::make(kPaper, material::NeoHookeanForm::paper), affine_field(m, general_F()));
 }

@@ -14,11 +14,20 @@ namespace {
 
 int round_up(int n, int b) { return (n + b - 1) / b * b; }
 
+// Runs `work`, adding its duration to seconds[kind] when timing is requested.
+template <class Work>
+void timed(double* seconds, ElementKind kind, Work&& work) {
+  if (!seconds) return work();
+  const auto t0 = std::chrono::steady_clock::now();
+  work();
+  seconds[static_cast<int>(kind)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 }  // namespace
 
 double ElementSet::relative_cost(ElementKind kind) {
   switch (kind) {
-    case ElementKind::linear: return 0.9;  // measured on the paper mesh (bench_dhd)
+    case ElementKind::linear: return 0.9;  // element by element; measured on the paper mesh (bench_dhd)
     case ElementKind::tled: return 1.0;
     case ElementKind::corotational: return 4.8;
     case ElementKind::anp: return 1.8;  // with its nodal-pressure pre-pass
@@ -27,7 +36,7 @@ double ElementSet::relative_cost(ElementKind kind) {
 }
 
 ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds,
-                       const Material& material, int tile_nodes)
+                       const Material& material, int tile_nodes, LinearForces linear_forces)
     : num_nodes_(mesh.num_nodes()), material_(material), kinds_(kinds) {
   if (static_cast<int>(kinds.size()) != mesh.num_tets())
     throw std::invalid_argument("ElementSet: one kind per element is required");
@@ -56,6 +65,14 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
     groups_.push_back(g);
   }
   stride_ = slot;
+  if (linear_forces == LinearForces::assembled && count(ElementKind::linear) > 0) {
+    linear_rows_ = LinearStiffnessRows(mesh, kinds, material);
+    linear_force_.assign(3 * static_cast<std::size_t>(num_nodes_), 0.0);
+    all_nodes_.resize(num_nodes_);
+    for (int n = 0; n < num_nodes_; ++n) all_nodes_[n] = n;
+  }
+  // Slots whose corner forces go through the buffer (assembled linear elements do not).
+  const auto through_buffer = [&](int e) { return e >= 0 && (kinds[e] != ElementKind::linear || !assembled_linear()); };
   for (auto& v : node_offset_) v.assign(stride_, 0);
   for (auto& v : grad_) v.assign(stride_, 0.0);
   volume_.assign(stride_, 0.0);
@@ -72,7 +89,7 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
       throw std::invalid_argument("ElementSet: element " + std::to_string(e) + " has no positive volume");
     for (int a = 0; a < 4; ++a) {
       node_offset_[a][i] = 3 * t[a];
-      ++degree[t[a]];
+      if (through_buffer(e)) ++degree[t[a]];
     }
     for (int a = 1; a < 4; ++a)
       for (int c = 0; c < 3; ++c) grad_[3 * (a - 1) + c][i] = sh.grad[a][c];
@@ -84,7 +101,7 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
   std::vector<int> fill(incidence_begin_.begin(), incidence_begin_.end() - 1);
   for (int i = 0; i < stride_; ++i) {
     const int e = original_[i];
-    if (e < 0) continue;
+    if (!through_buffer(e)) continue;
     for (int a = 0; a < 4; ++a) incidence_[fill[mesh.tets[e][a]]++] = 3 * a * stride_ + i;
   }
   build_tiles(key, std::max(tile_nodes, 1));
@@ -173,7 +190,9 @@ void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
       tile_blocks_[static_cast<std::size_t>(tile + 1) * G + gi] = {end, end};
     }
   }
-  // A node is ready once the last tile holding one of its elements is done.
+  // A node is ready once the last tile holding one of its elements is done. A node without
+  // elements through the buffer (none, or only assembled linear ones) is ready in the tile of
+  // its index, which spreads the linear rows over the sweep.
   ready_tile_.assign(num_nodes_, 0);
   first_tile_.assign(num_nodes_, 0);
   for (int n = 0; n < num_nodes_; ++n) {
@@ -183,7 +202,7 @@ void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
       lo = std::min(lo, t);
       hi = std::max(hi, t);
     }
-    if (lo > hi) lo = hi = 0;  // a node without elements
+    if (lo > hi) lo = hi = std::min(n / tile_nodes, num_tiles_ - 1);
     first_tile_[n] = lo;
     ready_tile_[n] = hi;
   }
@@ -199,16 +218,18 @@ void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, dou
   const int G = static_cast<int>(groups_.size());
   for (int gi = 0; gi < G; ++gi) {
     const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
-    if (b >= e) continue;
-    if (seconds) {
-      const auto t0 = std::chrono::steady_clock::now();
-      compute_group(groups_[gi], u, b, e, stats);
-      seconds[static_cast<int>(groups_[gi].kind)] +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    } else {
-      compute_group(groups_[gi], u, b, e, stats);
-    }
+    if (b >= e || !computed_per_element(groups_[gi])) continue;
+    timed(seconds, groups_[gi].kind, [&] { compute_group(groups_[gi], u, b, e, stats); });
   }
+  if (assembled_linear())
+    timed(seconds, ElementKind::linear,
+          [&] { compute_linear_rows(u, ready_nodes_begin(tile), ready_nodes_end(tile)); });
+}
+
+void ElementSet::compute_linear_rows(const double* u, const int* node_begin, const int* node_end) {
+  double* f = linear_force_.data();
+  for (const int* n = node_begin; n != node_end; ++n)
+    if (linear_rows_.row_blocks(*n) > 0) linear_rows_.multiply_row(*n, u, f + 3 * static_cast<std::size_t>(*n));
 }
 
 double ElementSet::tile_cost(int tile) const {
@@ -216,8 +237,11 @@ double ElementSet::tile_cost(int tile) const {
   double c = kNodeCost * (ready_begin_[tile + 1] - ready_begin_[tile]);
   for (int gi = 0; gi < G; ++gi) {
     const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
-    c += relative_cost(groups_[gi].kind) * (e - b);
+    if (computed_per_element(groups_[gi])) c += relative_cost(groups_[gi].kind) * (e - b);
   }
+  if (assembled_linear())
+    for (const int* n = ready_nodes_begin(tile); n != ready_nodes_end(tile); ++n)
+      c += kLinearBlockCost * linear_rows_.row_blocks(*n);
   return c;
 }
 
@@ -263,21 +287,18 @@ void ElementSet::compute_group(const Group& g, const double* u, int begin, int e
 }
 
 void ElementSet::compute(const double* u, int begin, int end, KernelStats& stats, double* seconds) {
-  if (has_nodal_pressure() && begin == 0 && end == stride_) {
+  const bool whole = begin == 0 && end == stride_;
+  if (has_nodal_pressure() && whole) {
     for (int t = 0; t < num_tiles_; ++t) compute_volume_ratios(u, t, stats);
     update_nodal_pressures(0, num_nodes_);
   }
+  if (assembled_linear() && whole)
+    timed(seconds, ElementKind::linear,
+          [&] { compute_linear_rows(u, all_nodes_.data(), all_nodes_.data() + num_nodes_); });
   for (const Group& g : groups_) {
     const int b = std::max(begin, g.begin), e = std::min(end, g.end);
-    if (b >= e) continue;
-    if (seconds) {
-      const auto t0 = std::chrono::steady_clock::now();
-      compute_group(g, u, b, e, stats);
-      seconds[static_cast<int>(g.kind)] +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    } else {
-      compute_group(g, u, b, e, stats);
-    }
+    if (b >= e || !computed_per_element(g)) continue;
+    timed(seconds, g.kind, [&] { compute_group(g, u, b, e, stats); });
   }
 }
 

@@ -9,6 +9,10 @@
 //     node → (element, corner) list in a fixed order (000 eq. 23);
 //   * elements are sorted by their highest node index and cut into tiles, so a step can sweep
 //     "tile of elements, then the nodes it completed" while the buffer is still in cache.
+// Linear elements are by default not computed element by element: their forces come from the
+// precomputed assembled stiffness rows (linear_rows.hpp), evaluated for the nodes a tile makes
+// ready and added in the node phase; LinearForces::per_element keeps the element kernel (for
+// comparison, and as the route a changing topology would need).
 // ANP elements (nodal_pressure.hpp) need their corners' nodal pressures, which depend on the
 // neighbouring elements: a pre-pass computes det F of the ANP elements (compute_volume_ratios)
 // and then the nodal pressures (update_nodal_pressures) before the element phase.
@@ -23,12 +27,16 @@
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_kind.hpp"
+#include "softsim/fem/linear_rows.hpp"
 #include "softsim/fem/tet_geometry.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::fem {
 
 inline constexpr int kBlock = 8;
+
+// How the linear elements' forces are produced (see the top of this file).
+enum class LinearForces { assembled, per_element };
 
 struct KernelStats {
   double min_j = 1e300;  // smallest volume ratio J = det F seen (tled, corotational, anp)
@@ -46,7 +54,7 @@ class ElementSet {
 
   // `tile_nodes`: nodes per tile of the fused element/node sweep (see compute_tile).
   ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material,
-             int tile_nodes = 128);
+             int tile_nodes = 128, LinearForces linear_forces = LinearForces::assembled);
 
   int num_nodes() const { return num_nodes_; }
   int num_elements() const { return static_cast<int>(kinds_.size()); }
@@ -61,7 +69,8 @@ class ElementSet {
   // Element phase over internal slots [begin, end) (block-aligned, see balanced_ranges):
   // corner forces into the buffer. If `seconds` is given, the time spent per kind is added to
   // seconds[kind]. J of tled, corotational and anp elements is tracked in `stats`. Over the
-  // whole set, the ANP pre-pass is included; over a part, the nodal pressures must be current.
+  // whole set, the ANP pre-pass and the assembled linear rows are included; over a part, the
+  // nodal pressures and linear row forces must be current.
   void compute(const double* u, int begin, int end, KernelStats& stats, double* seconds = nullptr);
 
   // ---- the ANP pre-pass (nothing to do without ANP elements) ----
@@ -73,7 +82,12 @@ class ElementSet {
   // Σ_a V_a U(J_a): the ANP elements' volumetric energy (energies() holds their isochoric part).
   double nodal_volumetric_energy(const double* u) const;
 
-  // Node phase: the internal force on `node` (000 eq. 23), summed in a fixed order.
+  // Whether the linear elements' forces come from assembled rows (and how many blocks they have).
+  bool assembled_linear() const { return !linear_rows_.empty(); }
+  const LinearStiffnessRows& linear_rows() const { return linear_rows_; }
+
+  // Node phase: the internal force on `node` (000 eq. 23), summed in a fixed order: its
+  // incident corner forces, then its linear row force.
   void gather(int node, double f[3]) const {
     double fx = 0, fy = 0, fz = 0;
     const double* __restrict bx = buffer_.data();
@@ -84,6 +98,12 @@ class ElementSet {
       fx += bx[o];
       fy += by[o];
       fz += bz[o];
+    }
+    if (assembled_linear()) {
+      const double* l = linear_force_.data() + 3 * static_cast<std::size_t>(node);
+      fx += l[0];
+      fy += l[1];
+      fz += l[2];
     }
     f[0] = fx;
     f[1] = fy;
@@ -104,9 +124,10 @@ class ElementSet {
   const int* ready_nodes_end(int tile) const { return ready_nodes_.data() + ready_begin_[tile + 1]; }
   int ready_tile(int node) const { return ready_tile_[node]; }
   int first_tile(int node) const { return first_tile_[node]; }
-  // Estimated cost of a tile's elements and ready nodes (units of one TLED element).
+  // Estimated cost of a tile's elements, linear rows and ready nodes (units of one TLED element).
   double tile_cost(int tile) const;
   static constexpr double kNodeCost = 2.5;
+  static constexpr double kLinearBlockCost = 0.24;  // one 3 × 3 block of a linear row (bench_dhd)
 
   // Reference shape of internal slot i (gradients and volume as stored).
   TetShape shape(int internal) const;
@@ -121,6 +142,8 @@ class ElementSet {
 
  private:
   void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats);
+  bool computed_per_element(const Group& g) const { return g.kind != ElementKind::linear || !assembled_linear(); }
+  void compute_linear_rows(const double* u, const int* node_begin, const int* node_end);
   void build_tiles(const std::vector<int>& key, int tile_nodes);
   void build_nodal_pressure(const mesh::TetMesh& mesh);
   kernels::SoaView view();
@@ -141,6 +164,10 @@ class ElementSet {
   std::vector<int> anp_begin_, anp_slot_;
   std::vector<double> anp_weight_, anp_node_volume_;
   AlignedVector<double> nodal_pressure_;
+  // Assembled linear rows and, per node, the row force of the current element phase.
+  LinearStiffnessRows linear_rows_;
+  AlignedVector<double> linear_force_;
+  std::vector<int> all_nodes_;
   std::vector<int> incidence_begin_;
   std::vector<int> incidence_;  // buffer offset of the x component of each incident corner
   int num_tiles_ = 1;
