@@ -32,6 +32,47 @@ void throw_refused(const std::string& what, FitStatus status, const std::string&
   throw NumericalError(what + ": " + to_string(status) + ": " + message);
 }
 
+// k-fold cross-validation, the same for the three relations: the rows of the design A are the
+// samples; each fold's training rows are solved for every column of Y (one right-hand side per
+// column, e.g. one load case), and add_errors(f, test rows, coefficients B with one column per
+// right-hand side, errors) books the fold's test errors. A failure refuses the score.
+template <class AddErrors>
+CvScore cross_validate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Y, const std::string& too_few,
+                       const FitOptions& options, AddErrors&& add_errors) {
+  CvScore score;
+  score.parameters = static_cast<int>(A.cols());
+  const int n = static_cast<int>(A.rows());
+  if (n < 2) {
+    refuse(score, FitStatus::too_few_samples, too_few);
+    return score;
+  }
+  const int k = effective_folds(n, options.folds);
+  const std::vector<int> fold = assign_folds(n, k, options.seed);
+  FoldErrors errors(k);
+  Eigen::MatrixXd B(A.cols(), Y.cols());
+  for (int f = 0; f < k; ++f) {
+    const Split s = split_fold(fold, f);
+    const LinearDesign design(A(s.train, Eigen::all), options.lm);
+    note_condition(score, design.condition());
+    if (design.status() != FitStatus::ok) {
+      refuse(score, design.status(), fold_message(f, design.message()));
+      return score;
+    }
+    for (Eigen::Index c = 0; c < Y.cols(); ++c) {
+      const Eigen::VectorXd column = Y.col(c);
+      const LinearFit fit = design.solve(column(s.train));
+      if (!fit.ok()) {
+        refuse(score, fit.status, fold_message(f, fit.message));
+        return score;
+      }
+      B.col(c) = fit.coefficients;
+    }
+    add_errors(f, s.test, B, errors);
+  }
+  errors.finish(score);
+  return score;
+}
+
 }  // namespace
 
 AffineScale input_scale(const std::vector<double>& values, bool scale_inputs) {
@@ -68,38 +109,15 @@ LinearFit fit_polynomial(const std::vector<double>& x, const std::vector<double>
 
 CvScore cv_polynomial(const std::vector<double>& x, const std::vector<double>& y, int order,
                       const AffineScale& scale, const FitOptions& options) {
-  CvScore score;
-  score.parameters = order + 1;
-  const int n = static_cast<int>(x.size());
-  if (n < 2) {
-    refuse(score, FitStatus::too_few_samples, "cross-validation needs at least 2 samples, got " + std::to_string(n));
-    return score;
-  }
-  const int k = effective_folds(n, options.folds);
-  const std::vector<int> fold = assign_folds(n, k, options.seed);
   const Eigen::MatrixXd A = polynomial_design(options.basis, scale, x, order);
-  const Eigen::Map<const Eigen::VectorXd> yv(y.data(), n);
-  FoldErrors errors(k);
-  for (int f = 0; f < k; ++f) {
-    const Split s = split_fold(fold, f);
-    const LinearDesign design(A(s.train, Eigen::all), options.lm);
-    note_condition(score, design.condition());
-    if (design.status() != FitStatus::ok) {
-      refuse(score, design.status(), fold_message(f, design.message()));
-      return score;
-    }
-    const LinearFit fit = design.solve(yv(s.train));
-    if (!fit.ok()) {
-      refuse(score, fit.status, fold_message(f, fit.message));
-      return score;
-    }
-    for (int i : s.test) {
-      const double e = A.row(i).dot(fit.coefficients) - yv[i];
-      errors.add(f, e * e);
-    }
-  }
-  errors.finish(score);
-  return score;
+  const Eigen::Map<const Eigen::VectorXd> yv(y.data(), static_cast<Eigen::Index>(y.size()));
+  return cross_validate(A, yv, "cross-validation needs at least 2 samples, got " + std::to_string(x.size()), options,
+                        [&](int f, const std::vector<int>& test, const Eigen::MatrixXd& B, FoldErrors& errors) {
+                          for (int i : test) {
+                            const double e = A.row(i).dot(B.col(0)) - yv[i];
+                            errors.add(f, e * e);
+                          }
+                        });
 }
 
 namespace {
@@ -143,39 +161,16 @@ Eigen::MatrixXd fit_surfaces(const SurfaceTerms& terms, const SurfaceFrame& fram
 
 CvScore cv_surface(const SurfaceTerms& terms, const SurfaceFrame& frame, const Eigen::MatrixXd& xy,
                    const Eigen::MatrixXd& values, const FitOptions& options) {
-  CvScore score;
-  score.parameters = terms.size();
-  const int n = static_cast<int>(xy.rows());
-  if (n < 2) {
-    refuse(score, FitStatus::too_few_samples, "cross-validation needs at least 2 nodes");
-    return score;
-  }
-  const int k = effective_folds(n, options.folds);
-  const std::vector<int> fold = assign_folds(n, k, options.seed);
   const Eigen::MatrixXd A = surface_design(terms, frame, xy);
-  FoldErrors errors(k);
-  for (int f = 0; f < k; ++f) {
-    const Split s = split_fold(fold, f);
-    const LinearDesign design(A(s.train, Eigen::all), options.lm);
-    note_condition(score, design.condition());
-    if (design.status() != FitStatus::ok) {
-      refuse(score, design.status(), fold_message(f, design.message()));
-      return score;
-    }
-    const Eigen::MatrixXd A_test = A(s.test, Eigen::all);
-    for (Eigen::Index c = 0; c < values.cols(); ++c) {
-      const Eigen::VectorXd column = values.col(c);
-      const LinearFit fit = design.solve(column(s.train));
-      if (!fit.ok()) {
-        refuse(score, fit.status, fold_message(f, fit.message));
-        return score;
-      }
-      const Eigen::VectorXd e = A_test * fit.coefficients - column(s.test);
-      for (Eigen::Index i = 0; i < e.size(); ++i) errors.add(f, e[i] * e[i]);
-    }
-  }
-  errors.finish(score);
-  return score;
+  return cross_validate(A, values, "cross-validation needs at least 2 nodes", options,
+                        [&](int f, const std::vector<int>& test, const Eigen::MatrixXd& B, FoldErrors& errors) {
+                          const Eigen::MatrixXd A_test = A(test, Eigen::all);
+                          for (Eigen::Index c = 0; c < values.cols(); ++c) {
+                            const Eigen::VectorXd column = values.col(c);
+                            const Eigen::VectorXd e = A_test * B.col(c) - column(test);
+                            for (Eigen::Index i = 0; i < e.size(); ++i) errors.add(f, e[i] * e[i]);
+                          }
+                        });
 }
 
 // ---------------- relation 3 ----------------
@@ -205,45 +200,19 @@ Eigen::MatrixXd fit_parameter_relation(const std::vector<double>& delta, const A
 CvScore cv_parameter_relation(const std::vector<double>& delta, const AffineScale& delta_scale,
                               const Eigen::MatrixXd& coefficients, const Eigen::MatrixXd& surface_design,
                               int order, const FitOptions& options) {
-  CvScore score;
-  score.parameters = order + 1;
-  const int n = static_cast<int>(delta.size());
-  if (n < 2) {
-    refuse(score, FitStatus::too_few_samples, "cross-validation needs at least 2 load cases");
-    return score;
-  }
-  const int k = effective_folds(n, options.folds);
-  const std::vector<int> fold = assign_folds(n, k, options.seed);
   const Eigen::MatrixXd Phi = polynomial_design(options.basis, delta_scale, delta, order);
-  FoldErrors errors(k);
-  Eigen::MatrixXd beta(coefficients.rows(), order + 1);
-  for (int f = 0; f < k; ++f) {
-    const Split s = split_fold(fold, f);
-    const LinearDesign design(Phi(s.train, Eigen::all), options.lm);
-    note_condition(score, design.condition());
-    if (design.status() != FitStatus::ok) {
-      refuse(score, design.status(), fold_message(f, design.message()));
-      return score;
-    }
-    for (Eigen::Index t = 0; t < coefficients.rows(); ++t) {
-      const Eigen::VectorXd row = coefficients.row(t).transpose();
-      const LinearFit fit = design.solve(row(s.train));
-      if (!fit.ok()) {
-        refuse(score, fit.status, fold_message(f, fit.message));
-        return score;
-      }
-      beta.row(t) = fit.coefficients.transpose();
-    }
-    for (int i : s.test) {
-      // Against the case's own fitted surface: the misfit of relation 2, the same for every
-      // order of relation 3, would otherwise swamp the differences between those orders.
-      const Eigen::VectorXd dp = beta * Phi.row(i).transpose() - coefficients.col(i);
-      const Eigen::VectorXd e = surface_design * dp;
-      for (Eigen::Index r = 0; r < e.size(); ++r) errors.add(f, e[r] * e[r]);
-    }
-  }
-  errors.finish(score);
-  return score;
+  return cross_validate(Phi, coefficients.transpose(), "cross-validation needs at least 2 load cases", options,
+                        [&](int f, const std::vector<int>& test, const Eigen::MatrixXd& B, FoldErrors& errors) {
+                          const Eigen::MatrixXd beta = B.transpose();
+                          for (int i : test) {
+                            // Against the case's own fitted surface: the misfit of relation 2, the
+                            // same for every order of relation 3, would otherwise swamp the
+                            // differences between those orders.
+                            const Eigen::VectorXd dp = beta * Phi.row(i).transpose() - coefficients.col(i);
+                            const Eigen::VectorXd e = surface_design * dp;
+                            for (Eigen::Index r = 0; r < e.size(); ++r) errors.add(f, e[r] * e[r]);
+                          }
+                        });
 }
 
 }  // namespace softsim::fit
