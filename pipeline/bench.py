@@ -76,4 +76,10 @@ def kernel_ratios(path):
         rows = [[label, fmt(times[name] / tled)] for name, label in names if name in times]
         sections += [f"{title} on the paper mesh, cost per element relative to TLED (paper form), "
                      "measured in one run of `bench_dhd`:\n", markdown_table(["kind", "× TLED"], rows)]
+    tled, linear = times.get("BM_NodalForces/partition:0"), times.get("BM_NodalForces/partition:2")
+    if tled and linear:
+        ratio = linear / tled
+        sections.append(f"Target of the engine (ours, not a paper's number): a linear element costs ≤ 0.3× a TLED "
+                        f"element. Measured for the nodal forces: {fmt(ratio, 2)}× — "
+                        f"{'met' if ratio <= 0.3 else 'not met'} (why: `cpp/apps/dhd_sim.md`, speed section).\n")
     return sections
