@@ -68,8 +68,6 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
   if (linear_forces == LinearForces::assembled && count(ElementKind::linear) > 0) {
     linear_rows_ = LinearStiffnessRows(mesh, kinds, material);
     linear_force_.assign(3 * static_cast<std::size_t>(num_nodes_), 0.0);
-    all_nodes_.resize(num_nodes_);
-    for (int n = 0; n < num_nodes_; ++n) all_nodes_[n] = n;
   }
   // Slots whose corner forces go through the buffer (assembled linear elements do not).
   const auto through_buffer = [&](int e) { return e >= 0 && (kinds[e] != ElementKind::linear || !assembled_linear()); };
@@ -292,9 +290,10 @@ void ElementSet::compute(const double* u, int begin, int end, KernelStats& stats
     for (int t = 0; t < num_tiles_; ++t) compute_volume_ratios(u, t, stats);
     update_nodal_pressures(0, num_nodes_);
   }
-  if (assembled_linear() && whole)
-    timed(seconds, ElementKind::linear,
-          [&] { compute_linear_rows(u, all_nodes_.data(), all_nodes_.data() + num_nodes_); });
+  if (assembled_linear() && whole)  // every node is ready in exactly one tile
+    timed(seconds, ElementKind::linear, [&] {
+      for (int t = 0; t < num_tiles_; ++t) compute_linear_rows(u, ready_nodes_begin(t), ready_nodes_end(t));
+    });
   for (const Group& g : groups_) {
     const int b = std::max(begin, g.begin), e = std::min(end, g.end);
     if (b >= e || !computed_per_element(g)) continue;

@@ -167,7 +167,6 @@ class ElementSet {
   // Assembled linear rows and, per node, the row force of the current element phase.
   LinearStiffnessRows linear_rows_;
   AlignedVector<double> linear_force_;
-  std::vector<int> all_nodes_;
   std::vector<int> incidence_begin_;
   std::vector<int> incidence_;  // buffer offset of the x component of each incident corner
   int num_tiles_ = 1;
