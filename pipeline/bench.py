@@ -66,7 +66,9 @@ def kernel_ratios(path):
              ("1", "TLED, decoupled form"), ("4", "ANP (decoupled form, with its pre-pass)"), ("3", "corotational")]
     for family, title, extra in [
             ("BM_NodalForces", "Internal nodal forces from the displacements (element phase and the nodal sums of "
-             "000 eq. 23)", []),
+             "000 eq. 23)",
+             [("BM_LinearRowsMemoryFloor", "memory floor of the assembled rows (reading their stored values once, "
+               "no arithmetic)")]),
             ("BM_Kernel", "Element phase alone (for assembled linear elements: the rows of every node)",
              [("BM_MemoryFloorKernel", "memory floor of the per-element path (same loads and stores, no mechanics)")])]:
         tled = times.get(f"{family}/partition:0")
@@ -76,10 +78,20 @@ def kernel_ratios(path):
         rows = [[label, fmt(times[name] / tled)] for name, label in names if name in times]
         sections += [f"{title} on the paper mesh, cost per element relative to TLED (paper form), "
                      "measured in one run of `bench_dhd`:\n", markdown_table(["kind", "× TLED"], rows)]
-    tled, linear = times.get("BM_NodalForces/partition:0"), times.get("BM_NodalForces/partition:2")
-    if tled and linear:
-        ratio = linear / tled
-        sections.append(f"Target of the engine (ours, not a paper's number): a linear element costs ≤ 0.3× a TLED "
-                        f"element. Measured for the nodal forces: {fmt(ratio, 2)}× — "
-                        f"{'met' if ratio <= 0.3 else 'not met'} (why: `cpp/apps/dhd_sim.md`, speed section).\n")
+    sections += target_line(times)
     return sections
+
+
+def target_line(times):
+    """The issue's "linear ≤ 0.3× TLED" judged on the complete nodal forces of one run, with the
+    memory floor of the assembled rows (no product of the stored matrix can beat it)."""
+    tled, linear = times.get("BM_NodalForces/partition:0"), times.get("BM_NodalForces/partition:2")
+    if not (tled and linear):
+        return []
+    ratio = linear / tled
+    line = (f"Target of the engine (ours, not a paper's number): a linear element costs ≤ 0.3× a TLED element. "
+            f"Measured for the nodal forces: {fmt(ratio, 2)}× — {'met' if ratio <= 0.3 else 'not met'}")
+    floor = times.get("BM_LinearRowsMemoryFloor")
+    if floor:
+        line += f"; reading the assembled rows once, with no arithmetic, already costs {fmt(floor / tled, 2)}×"
+    return [line + " (why: `cpp/apps/dhd_sim.md`, speed section).\n"]

@@ -7,7 +7,9 @@
 //                 elements the rows of every node);
 //   BM_NodalForces  the element phase and the nodal sums: the complete internal forces, per
 //                 element of each kind (what a linear element costs against a TLED one);
-//   BM_LinearRows the assembled linear rows alone, streamed and cache-resident;
+//   BM_LinearRows the assembled linear rows alone, streamed and cache-resident, with the engine's
+//                 kernel and the portable one;
+//   BM_LinearRowsMemoryFloor  reading the rows' stored values once, with no arithmetic;
 //   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic.
 // Scene: bottom fixed, the top-centre node pushed down (the paper's error scene, Fig. 10).
 #include <benchmark/benchmark.h>
@@ -159,22 +161,54 @@ BENCHMARK(BM_NodalForces)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)-
 // The assembled linear rows of the paper mesh, all nodes once (as in BM_Kernel/partition:2), and
 // the same number of row products over the first eighth of the nodes eight times, whose blocks
 // stay in the L2 cache: the ratio tells how much of the row product is streaming the matrix.
+// kernel 0: the engine's (8-wide where the build has AVX-512), 1: the portable loops.
 void BM_LinearRows(benchmark::State& state) {
   const int repeats = static_cast<int>(state.range(0));
+  const auto kernel = state.range(1) == 0 ? fem::LinearStiffnessRows::Kernel::best : fem::LinearStiffnessRows::Kernel::portable;
   const auto& m = paper_mesh();
   const fem::LinearStiffnessRows rows(m, std::vector<ElementKind>(m.num_tets(), ElementKind::linear),
                                       fem::Material::make(kPaper, material::NeoHookeanForm::paper));
   const std::vector<double> u = deformed_state();
   std::vector<double> f(u.size());
-  const int span = m.num_nodes() / repeats;
+  std::vector<int> nodes(m.num_nodes() / repeats);
+  for (std::size_t a = 0; a < nodes.size(); ++a) nodes[a] = static_cast<int>(a);
   for (auto _ : state) {
     for (int r = 0; r < repeats; ++r)
-      for (int a = 0; a < span; ++a) rows.multiply_row(a, u.data(), &f[3 * static_cast<std::size_t>(a)]);
+      rows.multiply_rows(nodes.data(), nodes.data() + nodes.size(), u.data(), f.data(), kernel);
     benchmark::DoNotOptimize(f.data());
   }
   state.counters["blocks"] = rows.num_blocks();
 }
-BENCHMARK(BM_LinearRows)->ArgName("repeats")->Arg(1)->Arg(8)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LinearRows)->ArgNames({"repeats", "kernel"})->Args({1, 0})->Args({8, 0})->Args({1, 1})->Unit(benchmark::kMicrosecond);
+
+// The memory floor of the assembled rows: reading, once, as many values as the rows store (nine
+// doubles and one neighbour index per block, and the row starts) with 8-wide sums and no other
+// work. No product of the stored matrix can stream it faster.
+void BM_LinearRowsMemoryFloor(benchmark::State& state) {
+  const auto& m = paper_mesh();
+  const fem::LinearStiffnessRows rows(m, std::vector<ElementKind>(m.num_tets(), ElementKind::linear),
+                                      fem::Material::make(kPaper, material::NeoHookeanForm::paper));
+  typedef double Vec8 __attribute__((vector_size(64)));
+  typedef int Int16 __attribute__((vector_size(64)));
+  const std::size_t blocks = rows.num_blocks();
+  fem::AlignedVector<Vec8> values((9 * blocks + 7) / 8, Vec8{} + 1e-9);
+  fem::AlignedVector<Int16> ints((blocks + m.num_nodes() + 1 + 15) / 16, Int16{} + 1);
+  for (auto _ : state) {
+    Vec8 s0{}, s1{};
+    std::size_t q = 0;
+    for (; q + 1 < values.size(); q += 2) {
+      s0 += values[q];
+      s1 += values[q + 1];
+    }
+    if (q < values.size()) s0 += values[q];
+    Int16 k{};
+    for (const Int16& v : ints) k += v;
+    benchmark::DoNotOptimize(s0 + s1);
+    benchmark::DoNotOptimize(k);
+  }
+  state.counters["bytes"] = static_cast<double>(values.size() * sizeof(Vec8) + ints.size() * sizeof(Int16));
+}
+BENCHMARK(BM_LinearRowsMemoryFloor)->Unit(benchmark::kMicrosecond);
 
 // The literal reading of "a precomputed 12 × 12 stiffness block times the element's
 // displacements" for linear elements, for comparison with BM_Kernel/partition:2 (the same

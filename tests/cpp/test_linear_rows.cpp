@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
 
 #include "softsim/fem/assembly.hpp"
 #include "softsim/fem/element_set.hpp"
@@ -93,6 +94,29 @@ TEST(LinearRows, ReciprocityAndNoForceUnderARigidTranslation) {
     t[3 * a + 2] = 0.002;
   }
   EXPECT_LT(max_abs(apply(t)), 1e-12 * max_abs(fu) * max_abs(t) / max_abs(u));
+}
+
+TEST(LinearRows, VectorKernelAgreesWithThePortableLoops) {
+  // The 8-wide kernel sums in another order than the plain loops: equal to rounding, over rows
+  // of every length the mesh has (whole groups of four blocks and remainders) and at the last node.
+  if (!fem::LinearStiffnessRows::vectorised()) GTEST_SKIP() << "this build has no 8-wide kernel";
+  const auto m = cuboid(4, 3, 3, 0.04, 0.03, 0.03);
+  const fem::LinearStiffnessRows rows(m, lower_half_linear(m), kMaterial);
+  std::vector<int> nodes(m.num_nodes());
+  std::set<int> lengths;
+  for (int a = 0; a < m.num_nodes(); ++a) {
+    nodes[a] = a;
+    lengths.insert(rows.row_blocks(a) % 4);
+  }
+  EXPECT_EQ(lengths.size(), 4u) << "rows should cover every remainder of four blocks";
+  const std::vector<double> u = random_field(m, 5);
+  std::vector<double> fv(u.size(), 0.0), fp(u.size(), 0.0);
+  using Kernel = fem::LinearStiffnessRows::Kernel;
+  rows.multiply_rows(nodes.data(), nodes.data() + nodes.size(), u.data(), fv.data(), Kernel::best);
+  rows.multiply_rows(nodes.data(), nodes.data() + nodes.size(), u.data(), fp.data(), Kernel::portable);
+  const double scale = max_abs(fp);
+  ASSERT_GT(scale, 0);
+  for (std::size_t q = 0; q < u.size(); ++q) EXPECT_NEAR(fv[q], fp[q], 1e-13 * scale) << "dof " << q;
 }
 
 TEST(LinearRows, OnlyNodesOfLinearElementsHaveRows) {

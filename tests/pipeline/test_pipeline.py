@@ -122,3 +122,25 @@ def test_content_hash_ignores_provenance_but_not_payload(tmp_path):
     c.write_text(json.dumps(dict(doc, payload={"u": [2.0]})))
     assert content_hash(a) == content_hash(b)
     assert content_hash(a) != content_hash(c)
+
+
+def bench_json(tmp_path, times):
+    path = tmp_path / "bench_dhd.json"
+    path.write_text(json.dumps({"benchmarks": [{"name": n, "run_type": "iteration", "real_time": t}
+                                               for n, t in times.items()]}))
+    return path
+
+
+def test_kernel_ratios_are_relative_to_tled_and_judge_the_target(tmp_path):
+    from pipeline.bench import kernel_ratios
+    text = "\n".join(kernel_ratios(bench_json(tmp_path, {
+        "BM_NodalForces/partition:0": 100.0, "BM_NodalForces/partition:2": 45.0,
+        "BM_LinearRowsMemoryFloor": 29.0})))
+    assert "| linear, assembled rows (the engine's default) | 0.45 |" in text
+    assert "| memory floor of the assembled rows (reading their stored values once, no arithmetic) | 0.29 |" in text
+    assert "Measured for the nodal forces: 0.45× — not met; reading the assembled rows once" in text
+    assert "already costs 0.29×" in text
+    met = "\n".join(kernel_ratios(bench_json(tmp_path, {
+        "BM_NodalForces/partition:0": 100.0, "BM_NodalForces/partition:2": 30.0})))
+    assert "0.3× — met" in met and "already costs" not in met
+    assert kernel_ratios(tmp_path / "missing.json") == []

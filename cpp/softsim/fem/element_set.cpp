@@ -225,9 +225,7 @@ void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, dou
 }
 
 void ElementSet::compute_linear_rows(const double* u, const int* node_begin, const int* node_end) {
-  double* f = linear_force_.data();
-  for (const int* n = node_begin; n != node_end; ++n)
-    if (linear_rows_.row_blocks(*n) > 0) linear_rows_.multiply_row(*n, u, f + 3 * static_cast<std::size_t>(*n));
+  linear_rows_.multiply_rows(node_begin, node_end, u, linear_force_.data());
 }
 
 double ElementSet::tile_cost(int tile) const {

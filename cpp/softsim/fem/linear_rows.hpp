@@ -11,9 +11,13 @@
 // once instead; a row then streams its blocks and reads each neighbour's displacement once.
 // The assembled matrix depends on the mesh topology, so a cut would have to rebuild it.
 //
+// Storage: the first eight values of each block, row by row (K_00 K_01 K_02 K_10 K_11 K_12 K_20
+// K_21), fill one 64-byte line, so that a single 8-wide multiply-add takes a whole block against
+// the neighbour's displacement laid out as (u0 u1 u2 u0 u1 u2 u0 u1); K_22 lives in a separate
+// array. A row's three sums are formed once at its end.
+//
 // Every row is summed in one fixed order (its blocks by ascending neighbour), whoever
 // evaluates it, so results are bit-identical for any thread count.
-#include <cstring>
 #include <vector>
 
 #include "softsim/fem/aligned.hpp"
@@ -25,6 +29,10 @@ namespace softsim::fem {
 
 class LinearStiffnessRows {
  public:
+  // Which code evaluates the rows: the 8-wide one where the build targets AVX-512, otherwise
+  // (and on request, to check one against the other) plain loops.
+  enum class Kernel { best, portable };
+
   LinearStiffnessRows() = default;
   // Assembles the blocks of the elements with kinds[e] == linear (others contribute nothing).
   LinearStiffnessRows(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material);
@@ -33,42 +41,25 @@ class LinearStiffnessRows {
   int num_nodes() const { return static_cast<int>(row_begin_.size()) - 1; }
   int num_blocks() const { return static_cast<int>(neighbour_.size()); }
   int row_blocks(int node) const { return row_begin_[node + 1] - row_begin_[node]; }
+  // Whether Kernel::best is the 8-wide kernel in this build.
+  static bool vectorised();
 
-  // f = (K_lin u) at `node`: 3 values.
-  void multiply_row(int node, const double* __restrict u, double* __restrict f) const {
-    // Each block is stored column by column (K_0k, K_1k, K_2k at 3k); a 4-wide load of column k
-    // also takes the next value, whose product lands in lane 3 and is never used. Two sets of
-    // accumulators for alternate blocks keep the FMA chains short.
-    typedef double Vec4 __attribute__((vector_size(32)));
-    const auto load = [](const double* p) {
-      Vec4 v;
-      std::memcpy(&v, p, sizeof v);
-      return v;
-    };
-    Vec4 even = {0, 0, 0, 0}, odd = {0, 0, 0, 0};
-    const int begin = row_begin_[node], end = row_begin_[node + 1];
-    const double* k = block_.data() + 9 * static_cast<std::size_t>(begin);
-    int p = begin;
-    for (; p + 1 < end; p += 2, k += 18) {
-      const double* x = u + neighbour_[p];
-      const double* y = u + neighbour_[p + 1];
-      even += load(k) * x[0] + load(k + 3) * x[1] + load(k + 6) * x[2];
-      odd += load(k + 9) * y[0] + load(k + 12) * y[1] + load(k + 15) * y[2];
-    }
-    if (p < end) {
-      const double* x = u + neighbour_[p];
-      even += load(k) * x[0] + load(k + 3) * x[1] + load(k + 6) * x[2];
-    }
-    const Vec4 sum = even + odd;
-    f[0] = sum[0];
-    f[1] = sum[1];
-    f[2] = sum[2];
-  }
+  // f[3a..3a+2] = (K_lin u) at every node a of [nodes_begin, nodes_end) that has a row; nodes
+  // without one are left untouched. `u` and `f` hold 3 values per node of the mesh.
+  void multiply_rows(const int* nodes_begin, const int* nodes_end, const double* u, double* f,
+                     Kernel kernel = Kernel::best) const;
+
+  // The row of one node: f = (K_lin u) at `node`, 3 values.
+  void multiply_row(int node, const double* u, double* f) const;
 
  private:
+  template <class Row>
+  void for_each_row(const int* nodes_begin, const int* nodes_end, const double* u, double* f, Row row) const;
+
   std::vector<int> row_begin_;   // per node: first block of its row (n + 1 values)
   std::vector<int> neighbour_;   // per block: 3 × the column node
-  AlignedVector<double> block_;  // 9 per block, column-major, plus one block of padding
+  AlignedVector<double> block_;  // 8 per block: K_00 .. K_21 row by row
+  std::vector<double> k22_;      // per block: K_22
 };
 
 }  // namespace softsim::fem
