@@ -75,13 +75,13 @@ int main(int argc, char** argv) {
       return;
     }
 
-    std::vector<fem::ElementKind> kinds = hybrid::make_partition(mesh, config.partition);
+    const std::vector<fem::ElementKind> kinds = hybrid::make_partition(mesh, config.partition);
     dynamics::SnapshotFn snapshot;
     if (!config.output.vtu.empty() && config.output.vtu_interval > 0)
       snapshot = [&](int step, double, const std::vector<double>& u, const std::vector<double>& v) {
         io::write_vtu(snapshot_path(config.output.vtu, step), mesh, vtu_fields(mesh, kinds, u, v));
       };
-    const hybrid::DhdRun run = hybrid::run_dhd(mesh, config, snapshot);
+    const hybrid::DhdRun run = hybrid::run_dhd(mesh, config, kinds, snapshot);
     if (!config.output.vtu.empty()) {
       const std::vector<double>& u =
           run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement;

@@ -112,8 +112,8 @@ void BM_Steps(benchmark::State& state) {
   for (int k = 0; k < fem::kNumElementKinds; ++k)
     if (last.element_counts[k] > 0)
       state.counters[std::string("ns_per_") + fem::kind_name(static_cast<ElementKind>(k))] =
-          1e9 * last.kernel_seconds[k] / (double(last.element_counts[k]) * kStepsPerIteration);
-  state.counters["ns_per_node"] = 1e9 * last.node_seconds / (double(m.num_nodes()) * kStepsPerIteration);
+          last.ns_per_element(k, kStepsPerIteration);
+  state.counters["ns_per_node"] = last.ns_per_node(m.num_nodes(), kStepsPerIteration);
 }
 
 void steps_args(benchmark::internal::Benchmark* b) {

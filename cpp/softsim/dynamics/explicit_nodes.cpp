@@ -2,11 +2,11 @@
 
 namespace softsim::dynamics {
 
-// Gather and central-difference update (000 eq. 33) of node i; `check` turns NaN as soon as a
-// value is not finite.
+// Gather (into f, the internal force on node i) and central-difference update (000 eq. 33) of
+// node i; `check` turns NaN as soon as a value is not finite.
 template <bool kGravity>
-inline void ExplicitSolver::update_node(int i, const double* up, const double* uc, double* un, double& check) const {
-  double f[3];
+inline void ExplicitSolver::update_node(int i, const double* up, const double* uc, double* un, double& check,
+                                        double f[3]) const {
   elements_.gather(i, f);
   const double a = A_[i], b = B_[i], c = C_[i];
   double x = b * uc[3 * i] - c * up[3 * i] - a * f[0];
@@ -28,10 +28,14 @@ inline void ExplicitSolver::update_node(int i, const double* up, const double* u
 template <bool kGravity>
 void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
                                   const double* uc, double* un, double& check) {
-  for (int k = begin; k < split; ++k) update_node<kGravity>(list[k], up, uc, un, check);
+  for (int k = begin; k < split; ++k) {
+    double f[3];
+    update_node<kGravity>(list[k], up, uc, un, check, f);
+  }
   for (int k = split; k < end; ++k) {
-    update_node<kGravity>(list[k], up, uc, un, check);
-    update_special(list[k], step, up, uc, un);
+    double f[3];
+    update_node<kGravity>(list[k], up, uc, un, check, f);
+    update_special(list[k], step, f, up, uc, un);
   }
 }
 
@@ -41,17 +45,28 @@ void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end
   else update_nodes<false>(list, begin, split, end, step, up, uc, un, check);
 }
 
-// Loads, probe, constraints, work booking and trajectory samples of node i, after its update.
-void ExplicitSolver::update_special(int i, int step, const double* up, const double* uc, double* un) {
+// Loads, probe, constraints, work booking and trajectory samples of node i, after its update;
+// `f` is the internal force on node i that the update gathered.
+void ExplicitSolver::update_special(int i, int step, const double f[3], const double* up, const double* uc,
+                                    double* un) {
   const double dt = opt_.dt;
   const double t = step * dt;
-  // Nodal loads: R enters eq. 33 as + A R.
+  // Nodal loads: R enters eq. 33 as + A R. External work is booked on [t − Δt, t] with the
+  // trapezoidal rule, ½ (R(t − Δt) + R(t)) · (u(t) − u(t − Δt)), the form the central-difference
+  // energy balance takes.
   for (int e = load_begin_[i]; e < load_begin_[i + 1]; ++e) {
     const LoadEntry& le = loads_[e];
     const NodalLoad& load = scene_.loads[le.load];
     const double r = load.ramp.at(t);
     for (int k = 0; k < 3; ++k)
       if (le.free[k]) un[3 * i + k] += A_[i] * r * load.force_per_node[k];
+    if (step > 0) {
+      const double r_mean = 0.5 * (load.ramp.at(t - dt) + r);
+      double w = 0;
+      for (int k = 0; k < 3; ++k)
+        if (le.free[k]) w += r_mean * load.force_per_node[k] * (uc[3 * i + k] - up[3 * i + k]);
+      load_work_[e] += w;
+    }
   }
   // The probe spring pulls its node towards the tool tip.
   const bool probe_here = scene_.has_probe && scene_.probe.node == i;
@@ -64,17 +79,14 @@ void ExplicitSolver::update_special(int i, int step, const double* up, const dou
     if (probe_force_ && step % opt_.trajectory_interval == 0)
       (*probe_force_)[step / opt_.trajectory_interval] = probe_force;
   }
-  // Constraints overwrite. External work is booked on [t − Δt, t] with the trapezoidal rule,
-  // ½ (f(t − Δt) + f(t)) · (u(t) − u(t − Δt)), the form the central-difference energy balance
-  // takes; a moving constraint's force is the one that produces its motion, M a + D v + F.
+  // Constraints overwrite; their work is booked like the loads', and a moving constraint's force
+  // is the one that produces its motion, M a + D v + F.
   const double alpha = opt_.damping_alpha;
   for (int e = dof_begin_[i]; e < dof_begin_[i + 1]; ++e) {
     const ConstrainedDof& d = dofs_[e];
     const int q = 3 * i + d.component;
     const double value = d.value * scene_.constraints[d.constraint].ramp.at(t + dt);
     if (moving_[d.constraint]) {
-      double f[3];
-      elements_.gather(i, f);
       const double m = mass_[i];
       const double total =
           m * (value - 2.0 * uc[q] + up[q]) / (dt * dt) + alpha * m * (value - up[q]) / (2.0 * dt) + f[d.component];
@@ -83,16 +95,6 @@ void ExplicitSolver::update_special(int i, int step, const double* up, const dou
     }
     un[q] = value;
   }
-  if (step > 0)
-    for (int e = load_begin_[i]; e < load_begin_[i + 1]; ++e) {
-      const LoadEntry& le = loads_[e];
-      const NodalLoad& load = scene_.loads[le.load];
-      const double r = 0.5 * (load.ramp.at(t - dt) + load.ramp.at(t));
-      double w = 0;
-      for (int k = 0; k < 3; ++k)
-        if (le.free[k]) w += r * load.force_per_node[k] * (uc[3 * i + k] - up[3 * i + k]);
-      load_work_[e] += w;
-    }
   if (probe_here) {
     if (step > 0)
       for (int k = 0; k < 3; ++k)

@@ -23,46 +23,40 @@ void ExplicitSolver::build_schedule() {
   }
   pressure_nodes_.assign(T + 1, 0);
   for (int p = 0; p <= T; ++p) pressure_nodes_[p] = static_cast<int>(static_cast<long>(n_) * p / T);
-  special_.assign(n_, 0);
-  for (const auto& d : dofs_) special_[d.node] = 1;
-  for (const auto& l : loads_) special_[l.node] = 1;
-  for (int node : opt_.trajectory_nodes) special_[node] = 1;
-  if (scene_.has_probe) special_[scene_.probe.node] = 1;
-  std::vector<int> part_of_tile(tiles, 0);
-  for (int p = 0; p < T; ++p)
-    for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) part_of_tile[q] = p;
-  // Each list holds the plain nodes first, then the special ones (from `split` on).
+  // Special nodes: those with constraints, loads, a trajectory or the probe.
+  std::vector<char> special_node(n_, 0);
+  for (const auto& d : dofs_) special_node[d.node] = 1;
+  for (const auto& l : loads_) special_node[l.node] = 1;
+  for (int node : opt_.trajectory_nodes) special_node[node] = 1;
+  if (scene_.has_probe) special_node[scene_.probe.node] = 1;
+  // Each list holds the plain nodes first, then the special ones (from `split` on). Deferred
+  // nodes can be updated by any thread once every element is done: they are pooled (in tile
+  // order) and each part gets an equal share, so that no thread idles at the end of the step.
   local_begin_.assign(tiles + 1, 0);
   local_split_.assign(tiles, 0);
   local_nodes_.clear();
-  std::vector<std::vector<int>> deferred(T), deferred_special(T);
-  for (int q = 0; q < tiles; ++q) {
-    const int p = part_of_tile[q];
-    std::vector<int> plain, special;
-    for (const int* it = elements_.ready_nodes_begin(q); it != elements_.ready_nodes_end(q); ++it) {
-      const bool local = elements_.first_tile(*it) >= tile_begin_[p];
-      (local ? (special_[*it] ? special : plain) : (special_[*it] ? deferred_special[p] : deferred[p])).push_back(*it);
+  std::vector<int> deferred_plain, deferred_special;
+  for (int p = 0; p < T; ++p)
+    for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) {
+      std::vector<int> plain, special;
+      for (const int* it = elements_.ready_nodes_begin(q); it != elements_.ready_nodes_end(q); ++it) {
+        const bool local = elements_.first_tile(*it) >= tile_begin_[p];
+        const bool is_special = special_node[*it];
+        (local ? (is_special ? special : plain) : (is_special ? deferred_special : deferred_plain)).push_back(*it);
+      }
+      local_nodes_.insert(local_nodes_.end(), plain.begin(), plain.end());
+      local_split_[q] = static_cast<int>(local_nodes_.size());
+      local_nodes_.insert(local_nodes_.end(), special.begin(), special.end());
+      local_begin_[q + 1] = static_cast<int>(local_nodes_.size());
     }
-    local_nodes_.insert(local_nodes_.end(), plain.begin(), plain.end());
-    local_split_[q] = static_cast<int>(local_nodes_.size());
-    local_nodes_.insert(local_nodes_.end(), special.begin(), special.end());
-    local_begin_[q + 1] = static_cast<int>(local_nodes_.size());
-  }
-  // Deferred nodes can be updated by any thread once every element is done: pool them and give
-  // each part an equal share, so that no thread idles at the end of the step.
-  std::vector<int> plain, special;
-  for (int p = 0; p < T; ++p) {
-    plain.insert(plain.end(), deferred[p].begin(), deferred[p].end());
-    special.insert(special.end(), deferred_special[p].begin(), deferred_special[p].end());
-  }
   deferred_begin_.assign(T + 1, 0);
   deferred_split_.assign(T, 0);
   deferred_nodes_.clear();
   for (int p = 0; p < T; ++p) {
     const auto share = [&](const std::vector<int>& v, int q) { return v.begin() + static_cast<long>(v.size()) * q / T; };
-    deferred_nodes_.insert(deferred_nodes_.end(), share(plain, p), share(plain, p + 1));
+    deferred_nodes_.insert(deferred_nodes_.end(), share(deferred_plain, p), share(deferred_plain, p + 1));
     deferred_split_[p] = static_cast<int>(deferred_nodes_.size());
-    deferred_nodes_.insert(deferred_nodes_.end(), share(special, p), share(special, p + 1));
+    deferred_nodes_.insert(deferred_nodes_.end(), share(deferred_special, p), share(deferred_special, p + 1));
     deferred_begin_[p + 1] = static_cast<int>(deferred_nodes_.size());
   }
   // Per-node lists of special entries (sorted by node already for dofs and loads).

@@ -39,6 +39,20 @@ std::string where(int step, double dt) {
   return s.str();
 }
 
+// The smallest J = det F over the whole set at u, and the (original) element it belongs to: a
+// full energy pass, for failure messages only.
+struct MinJ {
+  double j = 1e300;
+  int element = -1;
+};
+
+MinJ min_j_element(const fem::ElementSet& elements, const double* u) {
+  MinJ m;
+  std::vector<double> scratch(elements.padded_size());
+  elements.energies(u, 0, elements.padded_size(), scratch.data(), m.j, m.element);
+  return m;
+}
+
 }  // namespace
 
 ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> masses, const Scene& scene,
@@ -124,12 +138,9 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
   fem::KernelStats stats0;
   elements_.compute(u0.data(), 0, elements_.padded_size(), stats0);
   if (stats0.min_j <= 0) {
-    double mj = 1e300;
-    int me = -1;
-    std::vector<double> scratch(elements_.padded_size());
-    elements_.energies(u0.data(), 0, elements_.padded_size(), scratch.data(), mj, me);
+    const MinJ inverted = min_j_element(elements_, u0.data());
     std::ostringstream msg;
-    msg << "initial state: element " << me << " is inverted (J = " << mj << " <= 0)";
+    msg << "initial state: element " << inverted.element << " is inverted (J = " << inverted.j << " <= 0)";
     throw NumericalError(msg.str());
   }
   std::vector<double>& um1 = buf[0];
@@ -183,7 +194,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
   double initial_energy = 0, initial_bound = 0;
   double sample_seconds = 0;
 
-  auto fail_linear_inversion = [&](int step, double J, int e) {
+  auto fail_inversion = [&](int step, double J, int e) {
     std::ostringstream msg;
     msg << where(step, dt) << ": element " << e << " (" << fem::kind_name(elements_.kinds()[e])
         << ") is inverted: J = " << J << " <= 0";
@@ -260,21 +271,16 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
 
     if (failed_step >= 0) {
       const double* u = buf[(failed_step + (failed_inversion ? 1 : 2)) % 3].data();
-      double mj = 1e300;
-      int me = -1;
-      std::vector<double> scratch(elements_.padded_size());
-      elements_.energies(u, 0, elements_.padded_size(), scratch.data(), mj, me);
-      std::ostringstream msg;
       if (failed_inversion) {
-        msg << where(failed_step, dt) << ": element " << me << " (" << fem::kind_name(elements_.kinds()[me])
-            << ") is inverted: J = " << mj << " <= 0";
-      } else {
-        int node = -1;
-        for (int q = 0; q < n3 && node < 0; ++q)
-          if (!std::isfinite(u[q])) node = q / 3;
-        msg << where(failed_step, dt) << ": displacement of node " << node
-            << " is not finite (NaN or overflow); dt = " << dt << " s";
+        const MinJ inverted = min_j_element(elements_, u);
+        fail_inversion(failed_step, inverted.j, inverted.element);
       }
+      int node = -1;
+      for (int q = 0; q < n3 && node < 0; ++q)
+        if (!std::isfinite(u[q])) node = q / 3;
+      std::ostringstream msg;
+      msg << where(failed_step, dt) << ": displacement of node " << node
+          << " is not finite (NaN or overflow); dt = " << dt << " s";
       throw NumericalError(msg.str());
     }
     n_done = stop;
@@ -287,7 +293,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
       int me = -1;
       EnergySample s = sample_energy(n_done, buf[(n_done - 1) % 3].data(), buf[n_done % 3].data(),
                                      buf[(n_done + 1) % 3].data(), bound_kinetic, mj, me);
-      if (mj <= 0) fail_linear_inversion(n_done - 1, mj, me);
+      if (mj <= 0) fail_inversion(n_done - 1, mj, me);
       if (res.energies.empty()) {
         initial_energy = s.kinetic + s.strain - s.external_work;
         initial_bound = bound_kinetic + s.strain;
@@ -340,8 +346,10 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
     double f[3];
     elements_.gather(d.node, f);
     double r = f[d.component] - mass_[d.node] * scene_.gravity[d.component];
-    for (const auto& le : loads_)
-      if (le.node == d.node) r -= scene_.loads[le.load].ramp.at(t_end) * scene_.loads[le.load].force_per_node[d.component];
+    for (int e = load_begin_[d.node]; e < load_begin_[d.node + 1]; ++e) {
+      const NodalLoad& load = scene_.loads[loads_[e].load];
+      r -= load.ramp.at(t_end) * load.force_per_node[d.component];
+    }
     if (scene_.has_probe && scene_.probe.node == d.node) {
       const int i = d.node;
       r -= scene_.probe.stiffness * (scene_.probe.displacement[d.component] * scene_.probe.ramp.at(t_end) -

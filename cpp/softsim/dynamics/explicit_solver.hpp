@@ -54,6 +54,16 @@ struct ExplicitTiming {
   std::array<int, fem::kNumElementKinds> element_counts{};
   double node_seconds = 0;  // nodal gather and update, summed over threads
   double sample_seconds = 0;  // energy samples, checks and snapshot callbacks
+
+  // Kernel time of one element of `kind` per step, and node-phase time of one node per step
+  // (ns), over a run of `steps` steps; 0 without elements of that kind or without steps.
+  double ns_per_element(int kind, int steps) const {
+    const int n = element_counts[kind];
+    return n > 0 && steps > 0 ? 1e9 * kernel_seconds[kind] / (double(n) * steps) : 0.0;
+  }
+  double ns_per_node(int num_nodes, int steps) const {
+    return steps > 0 ? 1e9 * node_seconds / (double(num_nodes) * steps) : 0.0;
+  }
 };
 
 struct ExplicitResult {
@@ -95,13 +105,13 @@ class ExplicitSolver {
 
   void build_schedule();
   template <bool kGravity>
-  void update_node(int i, const double* up, const double* uc, double* un, double& check) const;
+  void update_node(int i, const double* up, const double* uc, double* un, double& check, double f[3]) const;
   template <bool kGravity>
   void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
                     double* un, double& check);
   void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
                     double* un, double& check);
-  void update_special(int i, int step, const double* up, const double* uc, double* un);
+  void update_special(int i, int step, const double f[3], const double* up, const double* uc, double* un);
   EnergySample sample_energy(int n_done, const double* u_before, const double* u_mid, const double* u_after,
                              double& bound_kinetic, double& min_j, int& min_j_element);
   double external_work() const;
@@ -121,7 +131,6 @@ class ExplicitSolver {
   std::vector<int> local_begin_, local_split_, local_nodes_;        // per tile: nodes updated right after it
   std::vector<int> deferred_begin_, deferred_split_, deferred_nodes_;  // per part: nodes updated after the barrier
   std::vector<int> pressure_nodes_;                    // per part: node range of the ANP pressure pass
-  std::vector<char> special_;                          // per node: has constraints, loads, ...
   std::vector<int> dof_begin_, load_begin_, trajectory_begin_;  // per node: its special entries
   std::vector<int> trajectory_order_;  // trajectory entries sorted by node
   std::vector<double> dof_work_, load_work_;

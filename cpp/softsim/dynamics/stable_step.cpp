@@ -12,10 +12,7 @@ CriticalStep critical_time_step(const mesh::TetMesh& mesh, const material::Elast
   c.min_altitude = 1e300;
   for (int e = 0; e < mesh.num_tets(); ++e) {
     const double h = mesh::tet_quality(mesh, e).min_altitude;
-    if (h < c.min_altitude) {
-      c.min_altitude = h;
-      c.element = e;
-    }
+    if (h < c.min_altitude) c.min_altitude = h;
   }
   c.wave_speed = material::dilatational_wave_speed(p);
   c.dt = c.min_altitude / c.wave_speed;  // 000 eq. 34

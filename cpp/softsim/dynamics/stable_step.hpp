@@ -11,7 +11,6 @@ namespace softsim::dynamics {
 
 struct CriticalStep {
   double min_altitude = 0;  // L_e (m)
-  int element = -1;         // where it occurs
   double wave_speed = 0;    // c (m/s)
   double dt = 0;            // Δt_cr (s)
 };

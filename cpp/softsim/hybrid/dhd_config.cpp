@@ -215,6 +215,9 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
     }
   }
   if (auto forces = b->optional("forces")) {
+    // Every constraint is read by now (the selections above keep node indices in range).
+    const std::vector<char> constrained =
+        dynamics::constrained_mask(dynamics::resolve_constraints(scene, mesh.num_nodes()), mesh.num_nodes());
     for (std::size_t i = 0; i < forces->size(); ++i) {
       const io::JsonReader e = (*forces)[i];
       dynamics::NodalLoad load;
@@ -230,14 +233,8 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
       // clamped edge it shares is fine: some of its nodes are free.)
       bool moves_something = false;
       for (int node : load.nodes)
-        for (int a = 0; a < 3 && !moves_something; ++a) {
-          if (load.force_per_node[a] == 0.0) continue;
-          bool constrained = false;
-          for (const auto& con : scene.constraints)
-            if (con.components[a] && std::find(con.nodes.begin(), con.nodes.end(), node) != con.nodes.end())
-              constrained = true;
-          moves_something = !constrained;
-        }
+        for (int a = 0; a < 3; ++a)
+          if (load.force_per_node[a] != 0.0 && !constrained[3 * node + a]) moves_something = true;
       if (!moves_something)
         e.fail("a force acting on at least one free component, but every loaded node is constrained");
       scene.loads.push_back(load);

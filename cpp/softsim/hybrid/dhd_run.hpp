@@ -25,11 +25,14 @@ struct DhdRun {
   dynamics::StepChoice step;
   std::optional<dynamics::ExplicitResult> explicit_result;
   std::optional<dynamics::StaticResult> static_result;
-  double setup_seconds = 0;
+  double setup_seconds = 0;  // critical step, element set and solver set-up (the partition excluded)
 };
 
 // Throws InputError (bad step request, ...) or NumericalError (failure during the solve).
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, const dynamics::SnapshotFn& snapshot = {});
+// The same with the partition already made: `kinds` as make_partition(mesh, config.partition).
+DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, std::vector<fem::ElementKind> kinds,
+               const dynamics::SnapshotFn& snapshot);
 
 nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& config, const DhdRun& run);
 

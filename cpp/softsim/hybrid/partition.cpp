@@ -23,6 +23,12 @@ std::vector<Eigen::Vector3d> element_centroids(const mesh::TetMesh& mesh) {
   return c;
 }
 
+namespace {
+
+// Each strategy's operational set: one flag per element, true for the nonlinear kind.
+
+// Exactly round(r · m) elements are non-operational: those with the largest `key`; ties go to
+// the lower element index.
 std::vector<char> operational_by_rank(const std::vector<double>& key, double linear_fraction) {
   if (!(linear_fraction >= 0 && linear_fraction <= 1))
     throw InputError("partition: linear_fraction must lie in [0, 1]");
@@ -63,6 +69,8 @@ std::vector<char> operational_in_sphere(const mesh::TetMesh& mesh, const Eigen::
   for (int e = 0; e < mesh.num_tets(); ++e) op[e] = (c[e] - center).norm() <= radius ? 1 : 0;
   return op;
 }
+
+}  // namespace
 
 std::vector<fem::ElementKind> make_partition(const mesh::TetMesh& mesh, const PartitionSpec& spec) {
   const int m = mesh.num_tets();

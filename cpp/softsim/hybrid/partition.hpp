@@ -44,14 +44,8 @@ struct PartitionSpec {
 // wrong reference size, fraction outside [0, 1]).
 std::vector<fem::ElementKind> make_partition(const mesh::TetMesh& mesh, const PartitionSpec& spec);
 
-// Building blocks (operational = true means TLED).
+// Building blocks.
 Eigen::Vector3d default_operating_point(const mesh::TetMesh& mesh);
 std::vector<Eigen::Vector3d> element_centroids(const mesh::TetMesh& mesh);
-// Exactly round(r · m) elements are non-operational: those with the largest `key`; ties go to
-// the lower element index.
-std::vector<char> operational_by_rank(const std::vector<double>& key, double linear_fraction);
-std::vector<char> operational_by_layers(const mesh::TetMesh& mesh, const std::string& tag, int nonlinear_layers);
-std::vector<char> operational_by_tags(const mesh::TetMesh& mesh, const std::string& tag, const std::vector<int>& values);
-std::vector<char> operational_in_sphere(const mesh::TetMesh& mesh, const Eigen::Vector3d& center, double radius);
 
 }  // namespace softsim::hybrid
