@@ -136,7 +136,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
   // Start-up (000 eq. 33 needs u(−Δt)): u(−Δt) = u0 − Δt v0 + Δt²/2 a0 with the initial
   // acceleration a0 = M⁻¹ (R − F(u0) − D v0).
   fem::KernelStats stats0;
-  elements_.compute(u0.data(), 0, elements_.padded_size(), stats0);
+  elements_.compute(u0.data(), stats0);
   if (stats0.min_j <= 0) {
     const MinJ inverted = min_j_element(elements_, u0.data());
     std::ostringstream msg;
@@ -339,7 +339,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
 
   // Quasi-static reactions at the final time: internal force minus applied load.
   fem::KernelStats st;
-  elements_.compute(res.displacement.data(), 0, elements_.padded_size(), st);
+  elements_.compute(res.displacement.data(), st);
   res.reactions.assign(scene_.constraints.size(), Eigen::Vector3d::Zero());
   const double t_end = res.time;
   for (const auto& d : dofs_) {

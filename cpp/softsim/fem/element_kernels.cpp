@@ -9,14 +9,15 @@
 #include "softsim/material/polar_decomposition.hpp"
 
 #if defined(SOFTSIM_HAVE_OPENMP)
-#define SOFTSIM_SIMD_MINMAX _Pragma("omp simd reduction(min : jmin) reduction(max : jmax)")
 #define SOFTSIM_SIMD _Pragma("omp simd")
-#define SOFTSIM_SIMD_MINMAX_WORST \
-  _Pragma("omp simd reduction(min : jmin) reduction(max : jmax) reduction(max : worst)")
+#define SOFTSIM_SIMD_MIN _Pragma("omp simd reduction(min : jmin)")
+#define SOFTSIM_SIMD_MINMAX _Pragma("omp simd reduction(min : jmin) reduction(max : jmax)")
+#define SOFTSIM_SIMD_MIN_WORST _Pragma("omp simd reduction(min : jmin) reduction(max : worst)")
 #else
-#define SOFTSIM_SIMD_MINMAX_WORST
-#define SOFTSIM_SIMD_MINMAX
 #define SOFTSIM_SIMD
+#define SOFTSIM_SIMD_MIN
+#define SOFTSIM_SIMD_MINMAX
+#define SOFTSIM_SIMD_MIN_WORST
 #endif
 
 namespace softsim::fem::kernels {
@@ -107,14 +108,13 @@ namespace {
 
 template <bool kAveraged>
 void paper_form_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double lambda,
-                       const double* __restrict pressure, double& min_j, double& max_j) {
-  double jmin = min_j, jmax = max_j;
-  SOFTSIM_SIMD_MINMAX
+                       const double* __restrict pressure, double& min_j) {
+  double jmin = min_j;
+  SOFTSIM_SIMD_MIN
   for (int k = begin; k < end; ++k) {
     SOFTSIM_LOAD_H(s, u, k)
     SOFTSIM_F_AND_COFACTOR
     jmin = std::min(jmin, J);
-    jmax = std::max(jmax, J);
     const double p = kAveraged ? 0.25 * (pressure[a0] + pressure[a1] + pressure[a2] + pressure[a3])
                                : lambda * (J - 1.0);
     const double V = s.vol[k];
@@ -125,35 +125,32 @@ void paper_form_kernel(const SoaView s, const double* __restrict u, int begin, i
                          cf * f20 + cc * c20, cf * f21 + cc * c21, cf * f22 + cc * c22)
   }
   min_j = jmin;
-  max_j = jmax;
 }
 
 }  // namespace
 
 void tled_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                       double lambda, double& min_j, double& max_j) {
-  paper_form_kernel<false>(s, u, begin, end, mu, lambda, nullptr, min_j, max_j);
+                       double lambda, double& min_j) {
+  paper_form_kernel<false>(s, u, begin, end, mu, lambda, nullptr, min_j);
 }
 
 void anp_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                      const double* __restrict pressure, double& min_j, double& max_j) {
-  paper_form_kernel<true>(s, u, begin, end, mu, 0.0, pressure, min_j, max_j);
+                      const double* __restrict pressure, double& min_j) {
+  paper_form_kernel<true>(s, u, begin, end, mu, 0.0, pressure, min_j);
 }
 
 void volume_ratio_kernel(const SoaView s, const double* __restrict u, int begin, int end,
-                         double* __restrict volume_ratio, double& min_j, double& max_j) {
-  double jmin = min_j, jmax = max_j;
-  SOFTSIM_SIMD_MINMAX
+                         double* __restrict volume_ratio, double& min_j) {
+  double jmin = min_j;
+  SOFTSIM_SIMD_MIN
   for (int k = begin; k < end; ++k) {
     SOFTSIM_LOAD_H(s, u, k)
     const double J = (1.0 + h00) * ((1.0 + h11) * (1.0 + h22) - h12 * h21) -
                      h01 * (h10 * (1.0 + h22) - h12 * h20) + h02 * (h10 * h21 - (1.0 + h11) * h20);
     volume_ratio[k] = J;
     jmin = std::min(jmin, J);
-    jmax = std::max(jmax, J);
   }
   min_j = jmin;
-  max_j = jmax;
 }
 
 // TLED, decoupled form (Miller et al. 2007): S = μJ^(−2/3)(I − I₁/3 C⁻¹) + KJ(J − 1)C⁻¹, as
@@ -185,8 +182,8 @@ void tled_decoupled_body(const SoaView& s, const double* __restrict u, int k, do
 template <bool kAveraged>
 void decoupled_form_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
                            double bulk, const double* __restrict pressure, double* __restrict volume_ratio,
-                           double& min_j, double& max_j) {
-  double jmin = min_j, jmax = max_j;
+                           double& min_j) {
+  double jmin = 1e300, jmax = -1e300;  // of this range only: they decide on the re-scan below
   SOFTSIM_SIMD_MINMAX
   for (int k = begin; k < end; ++k) {
     double J;
@@ -206,21 +203,19 @@ void decoupled_form_kernel(const SoaView s, const double* __restrict u, int begi
       }
     }
   }
-  min_j = jmin;
-  max_j = jmax;
+  min_j = std::min(min_j, jmin);
 }
 
 }  // namespace
 
 void tled_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                           double bulk, double* __restrict volume_ratio, double& min_j, double& max_j) {
-  decoupled_form_kernel<false>(s, u, begin, end, mu, bulk, nullptr, volume_ratio, min_j, max_j);
+                           double bulk, double* __restrict volume_ratio, double& min_j) {
+  decoupled_form_kernel<false>(s, u, begin, end, mu, bulk, nullptr, volume_ratio, min_j);
 }
 
 void anp_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                          const double* __restrict pressure, double* __restrict volume_ratio, double& min_j,
-                          double& max_j) {
-  decoupled_form_kernel<true>(s, u, begin, end, mu, 0.0, pressure, volume_ratio, min_j, max_j);
+                          const double* __restrict pressure, double* __restrict volume_ratio, double& min_j) {
+  decoupled_form_kernel<true>(s, u, begin, end, mu, 0.0, pressure, volume_ratio, min_j);
 }
 
 namespace {
@@ -261,15 +256,14 @@ constexpr double kPolarConverged = 1e-20;  // squared size of the last update
 }  // namespace
 
 void corotational_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                         double lambda, double* __restrict last_update, double& min_j, double& max_j) {
-  double jmin = min_j, jmax = max_j, worst = 0.0;
-  SOFTSIM_SIMD_MINMAX_WORST
+                         double lambda, double* __restrict last_update, double& min_j) {
+  double jmin = min_j, worst = 0.0;
+  SOFTSIM_SIMD_MIN_WORST
   for (int k = begin; k < end; ++k) {
     SOFTSIM_LOAD_H(s, u, k)
     SOFTSIM_F_AND_COFACTOR
     (void)c10, (void)c11, (void)c12, (void)c20, (void)c21, (void)c22;
     jmin = std::min(jmin, J);
-    jmax = std::max(jmax, J);
     // Newton iteration X ← (γ X + X⁻ᵀ/γ)/2 from X = F with determinant scaling γ = |det X|^(−1/3)
     // (Byers & Xu) until the update is small; no library call, so the loop vectorises.
     double x00 = f00, x01 = f01, x02 = f02, x10 = f10, x11 = f11, x12 = f12, x20 = f20, x21 = f21, x22 = f22;
@@ -317,7 +311,6 @@ void corotational_kernel(const SoaView s, const double* __restrict u, int begin,
     for (int k = begin; k < end; ++k)
       if (!(last_update[k] <= kPolarConverged)) corotational_exact(s, u, k, mu, lambda);
   min_j = jmin;
-  max_j = jmax;
 }
 
 }  // namespace softsim::fem::kernels

@@ -20,28 +20,27 @@ struct SoaView {
 // Small strain: ⁰V σ(sym ∇u) ∇N (000 eqs. 9–12).
 void linear_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double lambda);
 
-// TLED, paper form (000 eqs. 13–14). min_j/max_j: range of det F seen.
+// TLED, paper form (000 eqs. 13–14). min_j: lowered to the smallest det F seen.
 void tled_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double lambda,
-                       double& min_j, double& max_j);
+                       double& min_j);
 
 // TLED, decoupled form. `volume_ratio` (one per slot) is scratch for the exact-root fix-up.
 void tled_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double bulk,
-                           double* __restrict volume_ratio, double& min_j, double& max_j);
+                           double* __restrict volume_ratio, double& min_j);
 
 // ANP (nodal_pressure.hpp): TLED of either form with the volumetric term replaced by the mean
 // of the corners' nodal pressures; `pressure` holds p_a at index 3a (the corners' offsets).
 void anp_paper_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                      const double* __restrict pressure, double& min_j, double& max_j);
+                      const double* __restrict pressure, double& min_j);
 void anp_decoupled_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu,
-                          const double* __restrict pressure, double* __restrict volume_ratio, double& min_j,
-                          double& max_j);
+                          const double* __restrict pressure, double* __restrict volume_ratio, double& min_j);
 
 // det F of each element into volume_ratio[k] (the ANP pre-pass); nothing is written to s.out.
 void volume_ratio_kernel(const SoaView s, const double* __restrict u, int begin, int end,
-                         double* __restrict volume_ratio, double& min_j, double& max_j);
+                         double* __restrict volume_ratio, double& min_j);
 
 // Corotational. `last_update` (one per slot) is scratch for the polar-decomposition fix-up.
 void corotational_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double lambda,
-                         double* __restrict last_update, double& min_j, double& max_j);
+                         double* __restrict last_update, double& min_j);
 
 }  // namespace softsim::fem::kernels

@@ -130,7 +130,7 @@ void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& s
   for (int gi = 0; gi < G; ++gi) {
     if (groups_[gi].kind != ElementKind::anp) continue;
     const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
-    if (b < e) kernels::volume_ratio_kernel(view(), u, b, e, volume_ratio_.data(), stats.min_j, stats.max_j);
+    if (b < e) kernels::volume_ratio_kernel(view(), u, b, e, volume_ratio_.data(), stats.min_j);
   }
 }
 
@@ -191,7 +191,7 @@ void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
   // A node is ready once the last tile holding one of its elements is done. A node without
   // elements through the buffer (none, or only assembled linear ones) is ready in the tile of
   // its index, which spreads the linear rows over the sweep.
-  ready_tile_.assign(num_nodes_, 0);
+  std::vector<int> ready_tile(num_nodes_, 0);
   first_tile_.assign(num_nodes_, 0);
   for (int n = 0; n < num_nodes_; ++n) {
     int lo = num_tiles_, hi = 0;
@@ -202,14 +202,14 @@ void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
     }
     if (lo > hi) lo = hi = std::min(n / tile_nodes, num_tiles_ - 1);
     first_tile_[n] = lo;
-    ready_tile_[n] = hi;
+    ready_tile[n] = hi;
   }
   ready_begin_.assign(num_tiles_ + 1, 0);
-  for (int n = 0; n < num_nodes_; ++n) ++ready_begin_[ready_tile_[n] + 1];
+  for (int n = 0; n < num_nodes_; ++n) ++ready_begin_[ready_tile[n] + 1];
   for (int t = 0; t < num_tiles_; ++t) ready_begin_[t + 1] += ready_begin_[t];
   ready_nodes_.resize(num_nodes_);
   std::vector<int> fill(ready_begin_.begin(), ready_begin_.end() - 1);
-  for (int n = 0; n < num_nodes_; ++n) ready_nodes_[fill[ready_tile_[n]]++] = n;
+  for (int n = 0; n < num_nodes_; ++n) ready_nodes_[fill[ready_tile[n]]++] = n;
 }
 
 void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, double* seconds) {
@@ -263,40 +263,33 @@ void ElementSet::compute_group(const Group& g, const double* u, int begin, int e
     case ElementKind::tled:
       if (material_.neo_hookean.form == material::NeoHookeanForm::paper)
         kernels::tled_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.lambda,
-                          stats.min_j, stats.max_j);
+                                   stats.min_j);
       else
         kernels::tled_decoupled_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.bulk,
-                              scratch_.data(), stats.min_j, stats.max_j);
+                                       scratch_.data(), stats.min_j);
       break;
     case ElementKind::corotational:
-      kernels::corotational_kernel(s, u, begin, end, mu, lambda, scratch_.data(), stats.min_j, stats.max_j);
+      kernels::corotational_kernel(s, u, begin, end, mu, lambda, scratch_.data(), stats.min_j);
       break;
     case ElementKind::anp:
       if (material_.neo_hookean.form == material::NeoHookeanForm::paper)
-        kernels::anp_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, nodal_pressure_.data(), stats.min_j,
-                                  stats.max_j);
+        kernels::anp_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, nodal_pressure_.data(), stats.min_j);
       else
         kernels::anp_decoupled_kernel(s, u, begin, end, material_.neo_hookean.mu, nodal_pressure_.data(),
-                                      scratch_.data(), stats.min_j, stats.max_j);
+                                      scratch_.data(), stats.min_j);
       break;
   }
 }
 
-void ElementSet::compute(const double* u, int begin, int end, KernelStats& stats, double* seconds) {
-  const bool whole = begin == 0 && end == stride_;
-  if (has_nodal_pressure() && whole) {
+void ElementSet::compute(const double* u, KernelStats& stats) {
+  if (has_nodal_pressure()) {
     for (int t = 0; t < num_tiles_; ++t) compute_volume_ratios(u, t, stats);
     update_nodal_pressures(0, num_nodes_);
   }
-  if (assembled_linear() && whole)  // every node is ready in exactly one tile
-    timed(seconds, ElementKind::linear, [&] {
-      for (int t = 0; t < num_tiles_; ++t) compute_linear_rows(u, ready_nodes_begin(t), ready_nodes_end(t));
-    });
-  for (const Group& g : groups_) {
-    const int b = std::max(begin, g.begin), e = std::min(end, g.end);
-    if (b >= e || !computed_per_element(g)) continue;
-    timed(seconds, g.kind, [&] { compute_group(g, u, b, e, stats); });
-  }
+  if (assembled_linear())  // every node is ready in exactly one tile
+    for (int t = 0; t < num_tiles_; ++t) compute_linear_rows(u, ready_nodes_begin(t), ready_nodes_end(t));
+  for (const Group& g : groups_)
+    if (computed_per_element(g)) compute_group(g, u, g.begin, g.end, stats);
 }
 
 std::vector<int> ElementSet::balanced_ranges(int parts) const {

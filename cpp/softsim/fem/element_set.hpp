@@ -40,7 +40,6 @@ enum class LinearForces { assembled, per_element };
 
 struct KernelStats {
   double min_j = 1e300;  // smallest volume ratio J = det F seen (tled, corotational, anp)
-  double max_j = -1e300;
 };
 
 class ElementSet {
@@ -57,21 +56,17 @@ class ElementSet {
              int tile_nodes = 128, LinearForces linear_forces = LinearForces::assembled);
 
   int num_nodes() const { return num_nodes_; }
-  int num_elements() const { return static_cast<int>(kinds_.size()); }
   int padded_size() const { return stride_; }
   const std::vector<ElementKind>& kinds() const { return kinds_; }
   const std::vector<Group>& groups() const { return groups_; }
   int count(ElementKind kind) const;
   const Material& material() const { return material_; }
-  // Original element index of internal slot i, or −1 for padding.
-  int original(int internal) const { return original_[internal]; }
 
-  // Element phase over internal slots [begin, end) (block-aligned, see balanced_ranges):
-  // corner forces into the buffer. If `seconds` is given, the time spent per kind is added to
-  // seconds[kind]. J of tled, corotational and anp elements is tracked in `stats`. Over the
-  // whole set, the ANP pre-pass and the assembled linear rows are included; over a part, the
-  // nodal pressures and linear row forces must be current.
-  void compute(const double* u, int begin, int end, KernelStats& stats, double* seconds = nullptr);
+  // Element phase over the whole set, in one thread: the ANP pre-pass, the assembled linear
+  // rows and the corner forces of every element into the buffer, after which gather() gives
+  // every node's force. J of tled, corotational and anp elements is tracked in `stats`. (The
+  // explicit engine's threads sweep the tiles instead, see compute_tile.)
+  void compute(const double* u, KernelStats& stats);
 
   // ---- the ANP pre-pass (nothing to do without ANP elements) ----
   bool has_nodal_pressure() const { return count(ElementKind::anp) > 0; }
@@ -122,7 +117,6 @@ class ElementSet {
   void compute_tile(const double* u, int tile, KernelStats& stats, double* seconds = nullptr);
   const int* ready_nodes_begin(int tile) const { return ready_nodes_.data() + ready_begin_[tile]; }
   const int* ready_nodes_end(int tile) const { return ready_nodes_.data() + ready_begin_[tile + 1]; }
-  int ready_tile(int node) const { return ready_tile_[node]; }
   int first_tile(int node) const { return first_tile_[node]; }
   // Estimated cost of a tile's elements, linear rows and ready nodes (units of one TLED element).
   double tile_cost(int tile) const;
@@ -171,7 +165,7 @@ class ElementSet {
   std::vector<int> incidence_;  // buffer offset of the x component of each incident corner
   int num_tiles_ = 1;
   std::vector<std::pair<int, int>> tile_blocks_;  // [tile * groups + group] -> slot range
-  std::vector<int> ready_tile_, first_tile_;      // per node
+  std::vector<int> first_tile_;                   // per node
   std::vector<int> ready_begin_, ready_nodes_;    // per tile: nodes ready there (ascending)
 };
 

@@ -176,18 +176,4 @@ void LinearStiffnessRows::multiply_rows(const int* nodes_begin, const int* nodes
   for_each_row(nodes_begin, nodes_end, u, f, portable_row);
 }
 
-void LinearStiffnessRows::multiply_row(int node, const double* u, double* f) const {
-  const int begin = row_begin_[node], count = row_begin_[node + 1] - begin;
-  if (count == 0) {
-    f[0] = f[1] = f[2] = 0.0;
-    return;
-  }
-  const double* block = block_.data() + 8 * static_cast<std::size_t>(begin);
-#ifdef SOFTSIM_ROWS_AVX512
-  avx512_row(block, k22_.data() + begin, neighbour_.data() + begin, count, u, f);
-#else
-  portable_row(block, k22_.data() + begin, neighbour_.data() + begin, count, u, f);
-#endif
-}
-
 }  // namespace softsim::fem

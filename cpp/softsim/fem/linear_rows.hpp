@@ -38,7 +38,6 @@ class LinearStiffnessRows {
   LinearStiffnessRows(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds, const Material& material);
 
   bool empty() const { return neighbour_.empty(); }
-  int num_nodes() const { return static_cast<int>(row_begin_.size()) - 1; }
   int num_blocks() const { return static_cast<int>(neighbour_.size()); }
   int row_blocks(int node) const { return row_begin_[node + 1] - row_begin_[node]; }
   // Whether Kernel::best is the 8-wide kernel in this build.
@@ -48,9 +47,6 @@ class LinearStiffnessRows {
   // without one are left untouched. `u` and `f` hold 3 values per node of the mesh.
   void multiply_rows(const int* nodes_begin, const int* nodes_end, const double* u, double* f,
                      Kernel kernel = Kernel::best) const;
-
-  // The row of one node: f = (K_lin u) at `node`, 3 values.
-  void multiply_row(int node, const double* u, double* f) const;
 
  private:
   template <class Row>

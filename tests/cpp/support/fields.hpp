@@ -32,7 +32,7 @@ inline std::vector<double> affine_field(const mesh::TetMesh& m, const Eigen::Mat
 // The nodal internal forces of the explicit engine's element set at u (element and node phase).
 inline std::vector<double> gathered_forces(fem::ElementSet& set, const std::vector<double>& u) {
   fem::KernelStats st;
-  set.compute(u.data(), 0, set.padded_size(), st);
+  set.compute(u.data(), st);
   std::vector<double> f(u.size());
   for (int i = 0; i < set.num_nodes(); ++i) set.gather(i, &f[3 * i]);
   return f;
