@@ -33,10 +33,11 @@ namespace {
 using test_scenes::affine_field;
 using test_scenes::constraint;
 using test_scenes::cuboid;
-using test_scenes::energy_drift;
 using test_scenes::gathered_forces;
 using test_scenes::kPaper;
 using test_scenes::max_abs;
+using test_scenes::max_abs_diff;
+using test_scenes::run_explicit;
 
 // A non-homogeneous state: stretch and shear plus random nodal noise (J from about 0.8 to 1.2).
 std::vector<double> rough_field(const mesh::TetMesh& m, unsigned seed, double noise) {
@@ -148,28 +149,17 @@ TEST(AnpExplicit, DampedRunSettlesOnTheStaticSolutionBitIdenticallyOnOneAndTwoTh
   const auto m = cuboid(4, 3, 4, 0.04, 0.03, 0.04);
   const fem::Material mat = fem::Material::make(kPaper, NeoHookeanForm::paper);
   const auto kinds = mixed_kinds(m);
-  dynamics::Scene scene;
-  scene.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero()),
-                       constraint(m, "top", Eigen::Vector3d(0.002, 0, -0.006))};
-  scene.constraints[1].ramp.duration = 0.2;
-  scene.constraints[1].ramp.shape = dynamics::Ramp::Shape::smooth;
-  dynamics::ExplicitOptions opt;
-  opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
-  opt.steps = 2500;
-  opt.damping_alpha = 60.0;
+  auto [scene, opt] = test_scenes::damped_sheared_press(m);
   std::vector<std::vector<double>> results;
   for (int threads : {1, 2}) {
     opt.threads = threads;
-    fem::ElementSet set(m, kinds, mat, 16);  // small tiles: the threads share the sweep
-    dynamics::ExplicitSolver solver(set, dynamics::lumped_mass(m, kPaper.density), scene, opt);
-    results.push_back(solver.run().displacement);
+    // Small tiles: the threads share the sweep.
+    results.push_back(run_explicit(m, kinds, mat, scene, opt, {}, 16).displacement);
   }
   ASSERT_EQ(results[0].size(), results[1].size());
   EXPECT_EQ(0, std::memcmp(results[0].data(), results[1].data(), results[0].size() * sizeof(double)));
   const auto stat = dynamics::solve_static(m, kinds, mat, scene, {});
-  double diff = 0;
-  for (std::size_t q = 0; q < stat.displacement.size(); ++q)
-    diff = std::max(diff, std::abs(results[0][q] - stat.displacement[q]));
+  const double diff = max_abs_diff(results[0], stat.displacement);
   EXPECT_LT(diff, 1e-9 * max_abs(stat.displacement));
 }
 

@@ -31,9 +31,10 @@ namespace {
 
 using test_scenes::constraint;
 using test_scenes::cuboid;
-using test_scenes::energy_drift;
 using test_scenes::kPaper;
 using test_scenes::max_abs;
+using test_scenes::max_abs_diff;
+using test_scenes::run_explicit;
 
 // Largest eigenvalue of M⁻¹K by power iteration (the stiffest mode of the lumped system).
 double omega_max(const mesh::TetMesh& m, const fem::Material& mat) {
@@ -52,16 +53,6 @@ double omega_max(const mesh::TetMesh& m, const fem::Material& mat) {
     x = y.normalized();
   }
   return std::sqrt(lambda);
-}
-
-dynamics::ExplicitResult run_explicit(const mesh::TetMesh& m, const std::vector<ElementKind>& kinds,
-                                      const fem::Material& mat, const dynamics::Scene& scene,
-                                      const dynamics::ExplicitOptions& opt, std::vector<double> u0 = {},
-                                      int tile_nodes = 256) {
-  fem::ElementSet set(m, kinds, mat, tile_nodes);
-  dynamics::ExplicitSolver solver(set, dynamics::lumped_mass(m, mat.elastic.density), scene, opt);
-  if (!u0.empty()) solver.set_initial_state(std::move(u0), {});
-  return solver.run();
 }
 
 }  // namespace
@@ -159,20 +150,10 @@ TEST(Explicit, DampedRunSettlesOnTheStaticSolution) {
   const auto& layer = m.element_tags.at("layer");
   for (int e = 0; e < m.num_tets(); ++e)
     kinds[e] = layer[e] >= 2 ? ElementKind::tled : layer[e] == 1 ? ElementKind::corotational : ElementKind::linear;
-  dynamics::Scene scene;
-  scene.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero()),
-                       constraint(m, "top", Eigen::Vector3d(0.002, 0, -0.006))};
-  scene.constraints[1].ramp.duration = 0.2;
-  scene.constraints[1].ramp.shape = dynamics::Ramp::Shape::smooth;
-  dynamics::ExplicitOptions opt;
-  opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
-  opt.steps = 2500;
-  opt.damping_alpha = 60.0;
+  const auto [scene, opt] = test_scenes::damped_sheared_press(m);
   const auto dyn = run_explicit(m, kinds, mat, scene, opt);
   const auto stat = dynamics::solve_static(m, kinds, mat, scene, {});
-  double diff = 0;
-  for (std::size_t q = 0; q < dyn.displacement.size(); ++q)
-    diff = std::max(diff, std::abs(dyn.displacement[q] - stat.displacement[q]));
+  const double diff = max_abs_diff(dyn.displacement, stat.displacement);
   EXPECT_LT(diff, 1e-9 * max_abs(stat.displacement));
   // Reactions agree too (the explicit one leaves inertia out, which has died away).
   EXPECT_LT((dyn.reactions[1] - stat.reactions[1]).norm(), 1e-5 * stat.reactions[1].norm());

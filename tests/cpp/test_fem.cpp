@@ -25,18 +25,14 @@ using fem::ElementKind;
 
 namespace {
 
+using test_scenes::affine_boundary_scene;
 using test_scenes::affine_field;
+using test_scenes::constraint;
 using test_scenes::cuboid;
 using test_scenes::gathered_forces;
+using test_scenes::interior_nodes;
 using test_scenes::kPaper;
-
-std::vector<int> interior_nodes(const mesh::TetMesh& m) {
-  const auto& b = m.node_sets.at("boundary");
-  std::vector<int> out;
-  for (int i = 0; i < m.num_nodes(); ++i)
-    if (!std::binary_search(b.begin(), b.end(), i)) out.push_back(i);
-  return out;
-}
+using test_scenes::max_abs;
 
 struct KindForm {
   ElementKind kind;
@@ -108,8 +104,7 @@ TEST_P(Kinds, ForcePatchTestAffineFieldLeavesInteriorNodesInEquilibrium) {
   const fem::Material mat = fem::Material::make(kPaper, GetParam().form);
   fem::ElementSet set(m, std::vector<ElementKind>(m.num_tets(), GetParam().kind), mat);
   const std::vector<double> f = gathered_forces(set, affine_field(m, general_F()));
-  double fmax = 0;
-  for (double x : f) fmax = std::max(fmax, std::abs(x));
+  const double fmax = max_abs(f);
   ASSERT_GT(fmax, 0);
   for (int i : interior_nodes(m))
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(f[3 * i + k], 0.0, 1e-12 * fmax) << "node " << i;
@@ -121,18 +116,11 @@ TEST_P(Kinds, PatchTestHomogeneousDeformationReproducedInside) {
   const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
   const fem::Material mat = fem::Material::make(kPaper, GetParam().form);
   const Eigen::Matrix3d F = general_F();
-  dynamics::Scene scene;
-  for (int i : m.node_sets.at("boundary")) {
-    dynamics::DisplacementConstraint c;
-    c.name = "node";
-    c.nodes = {i};
-    c.displacement = (F - Eigen::Matrix3d::Identity()) * m.nodes[i];
-    scene.constraints.push_back(c);
-  }
   dynamics::StaticOptions opt;
   opt.increments = 4;
   opt.tolerance = 1e-12;
-  const auto r = dynamics::solve_static(m, std::vector<ElementKind>(m.num_tets(), GetParam().kind), mat, scene, opt);
+  const auto r = dynamics::solve_static(m, std::vector<ElementKind>(m.num_tets(), GetParam().kind), mat,
+                                        affine_boundary_scene(m, F), opt);
   const auto expected = affine_field(m, F);
   const auto inside = interior_nodes(m);
   ASSERT_FALSE(inside.empty());
@@ -173,9 +161,7 @@ TEST(RigidRotation, NinetyDegreesIsForceFreeForTledCorotationalAndAnpButNotLinea
   const double force_scale = kPaper.youngs_modulus * 0.01 * 0.01;  // E h²
   for (const KindForm& kf : kAllKinds) {
     fem::ElementSet set(m, std::vector<ElementKind>(m.num_tets(), kf.kind), fem::Material::make(kPaper, kf.form));
-    const std::vector<double> f = gathered_forces(set, u);
-    double fmax = 0;
-    for (double x : f) fmax = std::max(fmax, std::abs(x));
+    const double fmax = max_abs(gathered_forces(set, u));
     if (kf.kind == ElementKind::linear)
       EXPECT_GT(fmax, 0.1 * force_scale) << "small-strain elements must see the rotation as strain";
     else
@@ -191,11 +177,10 @@ TEST(SmallLoad, TledAndLinearAgreeToFirstOrder) {
   std::vector<double> ratio;
   for (double s : {1e-3, 1e-4}) {
     dynamics::Scene scene;
-    dynamics::DisplacementConstraint bottom, top;
-    bottom.nodes = m.node_sets.at("bottom");
+    dynamics::DisplacementConstraint top;
     top.nodes = m.node_sets.at("top");
     top.displacement = Eigen::Vector3d(0.2 * s * 0.03, 0.1 * s * 0.03, -s * 0.03);
-    scene.constraints = {bottom, top};
+    scene.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero()), top};
     dynamics::StaticOptions opt;
     opt.increments = 1;
     opt.tolerance = 1e-10;

@@ -25,6 +25,8 @@
 #include "softsim/mesh/cuboid.hpp"
 #include "softsim/io/errors.hpp"
 
+#include "support/scenes.hpp"
+
 // ---- counting every heap allocation of this process (glibc: malloc is interposable) ----
 // Not under sanitizers, which bring their own allocator.
 #if defined(__has_feature)
@@ -579,10 +581,7 @@ TEST(DatasetJson, ReadsTheRpimDatasetPayloadAndChecksIt) {
 
 TEST(StaticSeries, TakesTheTopFaceInGridOrderAndTheNearestLoadedNode) {
   // A 4 × 4 × 2 cuboid; each "solution" displaces node i by (i, 2 i, −3 i) µm.
-  mesh::CuboidSpec spec;
-  spec.cells = {4, 4, 2};
-  spec.size = {0.04, 0.04, 0.02};
-  const mesh::TetMesh m = mesh::make_cuboid(spec);
+  const mesh::TetMesh m = test_scenes::cuboid(4, 4, 2, 0.04, 0.04, 0.02);
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "softsim_test_fit_series";
   std::filesystem::create_directories(dir);
   const std::string mesh_path = (dir / "mesh.json").string();

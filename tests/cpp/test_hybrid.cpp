@@ -22,6 +22,7 @@
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/fields.hpp"
 #include "support/scenes.hpp"
 
 using namespace softsim;
@@ -30,6 +31,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using test_scenes::affine_boundary_scene;
+using test_scenes::constraint;
 using test_scenes::cuboid;
 using test_scenes::kPaper;
 
@@ -143,11 +146,10 @@ TEST(Partition, StrainDrivenSplitFollowsTheReferenceSolution) {
   // tool: by threshold and by fraction, the most strained elements become TLED.
   const auto m = cuboid(5, 5, 3, 0.05, 0.05, 0.03);
   dynamics::Scene scene;
-  dynamics::DisplacementConstraint bottom, push;
-  bottom.nodes = m.node_sets.at("bottom");
+  dynamics::DisplacementConstraint push;
   push.nodes = {dynamics::nearest_node(m, Eigen::Vector3d(0.025, 0.025, 0.03))};
   push.displacement = Eigen::Vector3d(0, 0, -0.005);
-  scene.constraints = {bottom, push};
+  scene.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero()), push};
   const auto ref = dynamics::solve_static(m, std::vector<ElementKind>(m.num_tets(), ElementKind::tled),
                                           fem::Material::make(kPaper, material::NeoHookeanForm::paper), scene, {});
   const auto strain = hybrid::element_strain(m, ref.displacement, hybrid::StrainMeasure::green_lagrange);
@@ -177,17 +179,11 @@ namespace {
 // Static solve with every boundary node prescribed to X ↦ F X; returns the largest deviation
 // of an interior node from the same affine map.
 double mixed_patch_error(const mesh::TetMesh& m, const std::vector<ElementKind>& kinds, const Eigen::Matrix3d& F) {
-  dynamics::Scene scene;
-  for (int i : m.node_sets.at("boundary")) {
-    dynamics::DisplacementConstraint c;
-    c.nodes = {i};
-    c.displacement = (F - Eigen::Matrix3d::Identity()) * m.nodes[i];
-    scene.constraints.push_back(c);
-  }
   dynamics::StaticOptions opt;
   opt.increments = 2;
   opt.tolerance = 1e-11;
-  const auto r = dynamics::solve_static(m, kinds, fem::Material::make(kPaper, material::NeoHookeanForm::paper), scene, opt);
+  const auto r = dynamics::solve_static(m, kinds, fem::Material::make(kPaper, material::NeoHookeanForm::paper),
+                                        affine_boundary_scene(m, F), opt);
   const auto& b = m.node_sets.at("boundary");
   double err = 0;
   for (int i = 0; i < m.num_nodes(); ++i) {

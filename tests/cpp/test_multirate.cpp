@@ -548,6 +548,19 @@ TEST(AdaptablePrimary, LinearFunctionHasGradientMinimumAndMaximum) {
   EXPECT_EQ(linear_primary_size(p, 1.0), 30);
 }
 
+namespace {
+// Implicit regions on the 40-node bar: a primary region sized by the linear policy (10 nodes at
+// rest, 4 more per node spacing of deformation, at most 30), the rest solved every 20th frame.
+AsyncSpec linear_adaptive_primary(const BarSpec& b) {
+  AsyncSpec spec = regions(10, {{0, 20, {}}}, solver_of(SolverKind::kImplicit), true);
+  spec.primary.kind = PrimarySizePolicy::Kind::kLinear;
+  spec.primary.max_nodes = 30;
+  spec.primary.gradient = 4.0;
+  spec.primary.scale = b.length / 39;
+  return spec;
+}
+}  // namespace
+
 TEST(AdaptablePrimary, SizeFollowsTheDeformation) {
   // Ramp to a held deformation: the primary region starts at its minimum and ends at the
   // size the policy gives for the settled deformation (linear) or at the farthest node
@@ -561,11 +574,7 @@ TEST(AdaptablePrimary, SizeFollowsTheDeformation) {
   run(whole, input, loop);
   const Eigen::VectorXd settled = whole.displacement();  // free node i sits at x = (i + 1) h
 
-  AsyncSpec linear = regions(10, {{0, 20, {}}}, solver_of(SolverKind::kImplicit), true);
-  linear.primary.kind = PrimarySizePolicy::Kind::kLinear;
-  linear.primary.max_nodes = 30;
-  linear.primary.gradient = 4.0;
-  linear.primary.scale = b.length / 39;
+  AsyncSpec linear = linear_adaptive_primary(b);
   AsyncSolver adaptive(sys, contact, linear);
   const LoopRecord r = run(adaptive, input, loop);
   EXPECT_EQ(r.primary_nodes.front(), 10);
@@ -610,11 +619,7 @@ TEST(AdaptablePrimary, HoldTimeKeepsTheRegionThroughZeroCrossings) {
   sine.amplitude = 2e-2;
   sine.start_frequency = 2.0;
   sine.sweep_time = 1e-3;  // full amplitude from the first frame
-  AsyncSpec spec = regions(10, {{0, 20, {}}}, solver_of(SolverKind::kImplicit), true);
-  spec.primary.kind = PrimarySizePolicy::Kind::kLinear;
-  spec.primary.max_nodes = 30;
-  spec.primary.gradient = 4.0;
-  spec.primary.scale = b.length / 39;
+  AsyncSpec spec = linear_adaptive_primary(b);
   AsyncSolver instantaneous(sys, contact, spec);
   spec.primary.hold_frames = 500;  // one period of the 2 Hz input
   AsyncSolver held(sys, contact, spec);

@@ -1,9 +1,10 @@
 #pragma once
-// Fields, scene pieces and energy checks shared by the FEM and dynamics test files.
+// Fields, scene pieces, runs and energy checks shared by the FEM, dynamics and hybrid test files.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,6 +17,8 @@
 #include "softsim/dynamics/scene.hpp"
 #include "softsim/fem/element_set.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
+
+#include "support/scenes.hpp"
 
 namespace softsim::test_scenes {
 
@@ -73,10 +76,70 @@ inline dynamics::DisplacementConstraint constraint(const mesh::TetMesh& m, const
   return c;
 }
 
+// The nodes off the "boundary" set, in increasing order.
+inline std::vector<int> interior_nodes(const mesh::TetMesh& m) {
+  const auto& b = m.node_sets.at("boundary");
+  std::vector<int> out;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (!std::binary_search(b.begin(), b.end(), i)) out.push_back(i);
+  return out;
+}
+
+// The patch test's load: every boundary node prescribed to u = (F − I) X, one constraint each.
+inline dynamics::Scene affine_boundary_scene(const mesh::TetMesh& m, const Eigen::Matrix3d& F) {
+  dynamics::Scene scene;
+  for (int i : m.node_sets.at("boundary")) {
+    dynamics::DisplacementConstraint c;
+    c.name = "boundary";
+    c.nodes = {i};
+    c.displacement = (F - Eigen::Matrix3d::Identity()) * m.nodes[i];
+    scene.constraints.push_back(c);
+  }
+  return scene;
+}
+
 inline double max_abs(const std::vector<double>& v) {
   double m = 0;
   for (double x : v) m = std::max(m, std::abs(x));
   return m;
+}
+
+// Largest componentwise |a − b| (a and b of equal length).
+inline double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
+  double m = 0;
+  for (std::size_t q = 0; q < a.size(); ++q) m = std::max(m, std::abs(a[q] - b[q]));
+  return m;
+}
+
+// An explicit run of the element set of (m, kinds, mat) from rest, or from u0 when given.
+inline dynamics::ExplicitResult run_explicit(const mesh::TetMesh& m, const std::vector<fem::ElementKind>& kinds,
+                                             const fem::Material& mat, const dynamics::Scene& scene,
+                                             const dynamics::ExplicitOptions& opt, std::vector<double> u0 = {},
+                                             int tile_nodes = 256) {
+  fem::ElementSet set(m, kinds, mat, tile_nodes);
+  dynamics::ExplicitSolver solver(set, dynamics::lumped_mass(m, mat.elastic.density), scene, opt);
+  if (!u0.empty()) solver.set_initial_state(std::move(u0), {});
+  return solver.run();
+}
+
+// Bottom clamped, top face pushed by (2, 0, −6) mm with a smooth 0.2 s ramp; 2500 steps of
+// 0.9 × the critical step of the paper's material with mass damping α = 60/s, by when the run
+// has settled on the static solution of the same scene.
+struct DampedRun {
+  dynamics::Scene scene;
+  dynamics::ExplicitOptions options;
+};
+
+inline DampedRun damped_sheared_press(const mesh::TetMesh& m) {
+  DampedRun run;
+  run.scene.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero()),
+                           constraint(m, "top", Eigen::Vector3d(0.002, 0, -0.006))};
+  run.scene.constraints[1].ramp.duration = 0.2;
+  run.scene.constraints[1].ramp.shape = dynamics::Ramp::Shape::smooth;
+  run.options.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
+  run.options.steps = 2500;
+  run.options.damping_alpha = 60.0;
+  return run;
 }
 
 // Energy of a free vibration: E0 = kinetic + strain at the first sample, the largest relative
