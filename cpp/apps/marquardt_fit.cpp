@@ -19,8 +19,6 @@ using namespace softsim;
 
 namespace {
 
-constexpr const char* kAxis[3] = {"x", "y", "z"};
-
 Eigen::Vector3d read_force(const io::JsonReader& node) {
   if (!node.raw().is_array() || node.raw().size() != 3) node.fail("a force [fx, fy, fz] in N");
   return Eigen::Vector3d(node[0].as_double(), node[1].as_double(), node[2].as_double());
@@ -41,7 +39,7 @@ void fit_or_cv(app::AppContext& ctx) {
   std::array<std::string, 3> paths;
   std::array<std::optional<fit::StaticSeries>, 3> series;
   for (int d = 0; d < 3; ++d) {
-    const auto entry = ds_node.optional(kAxis[d]);
+    const auto entry = ds_node.optional(fit::kAxis[d]);
     if (!entry) continue;
     if (entry->raw().is_object()) {
       series[d] = fit::static_series_from_json(*entry);
@@ -83,8 +81,8 @@ void fit_or_cv(app::AppContext& ctx) {
       data[d] = fit::read_dataset(ctx.input(paths[d]));
     }
     use[d] = &data[d];
-    sources[kAxis[d]] = {{"path", paths[d]}, {"kind", data[d].kind}, {"cases", data[d].case_count()}};
-    dataset_timing[kAxis[d]] = data[d].timing;
+    sources[fit::kAxis[d]] = {{"path", paths[d]}, {"kind", data[d].kind}, {"cases", data[d].case_count()}};
+    dataset_timing[fit::kAxis[d]] = data[d].timing;
   }
   ctx.provenance.seed = settings.options.seed;
   const fit::FitResult result = fit::fit_surface_model(use, settings, cv_mode);
@@ -104,7 +102,7 @@ void fit_or_cv(app::AppContext& ctx) {
   nlohmann::json training = nlohmann::json::object(), checks = nullptr;
   for (int d = 0; d < 3; ++d) {
     if (use[d] == nullptr) continue;
-    training[kAxis[d]] = fit::assess_dataset(result.model, data[d], 0);
+    training[fit::kAxis[d]] = fit::assess_dataset(result.model, data[d], 0);
     if (!exact && data[d].unit_solutions) exact.emplace(*data[d].unit_solutions);
   }
   nlohmann::json validated = nlohmann::json::array();

@@ -11,8 +11,6 @@ namespace softsim::fit {
 
 namespace {
 
-constexpr const char* kAxis[3] = {"x", "y", "z"};
-
 Eigen::MatrixXd node_major_to_rows(const Eigen::VectorXd& u) {
   const Eigen::Index n = u.size() / 3;
   Eigen::MatrixXd rows(n, 3);

@@ -4,6 +4,15 @@
 
 namespace softsim::fit {
 
+namespace {
+
+// P_{n+1}(t) from P_n(t) = p and P_{n-1}(t) = p_prev (Bonnet's recurrence).
+double legendre_next(int n, double t, double p, double p_prev) {
+  return ((2 * n + 1) * t * p - n * p_prev) / (n + 1);
+}
+
+}  // namespace
+
 const char* to_string(Basis basis) { return basis == Basis::legendre ? "legendre" : "monomial"; }
 
 AffineScale AffineScale::from_range(double lo, double hi) {
@@ -20,7 +29,7 @@ void evaluate_basis(Basis basis, int order, double t, double* out) {
   out[1] = t;
   for (int n = 1; n < order; ++n) {
     if (basis == Basis::legendre)
-      out[n + 1] = ((2 * n + 1) * t * out[n] - n * out[n - 1]) / (n + 1);  // Bonnet's recurrence
+      out[n + 1] = legendre_next(n, t, out[n], out[n - 1]);
     else
       out[n + 1] = out[n] * t;
   }
@@ -39,7 +48,7 @@ double Polynomial1D::operator()(double x) const {
   double acc = coefficients[0];
   if (n >= 1) acc += coefficients[1] * t;
   for (int k = 1; k < n; ++k) {
-    const double p_next = ((2 * k + 1) * t * p - k * p_prev) / (k + 1);
+    const double p_next = legendre_next(k, t, p, p_prev);
     p_prev = p;
     p = p_next;
     acc += coefficients[k + 1] * p;

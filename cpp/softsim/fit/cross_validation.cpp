@@ -25,6 +25,21 @@ std::vector<int> assign_folds(int samples, int folds, std::uint64_t seed) {
   return fold;
 }
 
+FoldDesigns::FoldDesigns(const Eigen::MatrixXd& design, int requested_folds, std::uint64_t seed,
+                         const LmSettings& settings)
+    : samples_(static_cast<int>(design.rows())), parameters_(static_cast<int>(design.cols())) {
+  if (samples_ < 2) return;
+  const int k = effective_folds(samples_, requested_folds);
+  const std::vector<int> fold = assign_folds(samples_, k, seed);
+  train_.resize(k);
+  test_.resize(k);
+  designs_.reserve(k);
+  for (int f = 0; f < k; ++f) {
+    for (int i = 0; i < samples_; ++i) (fold[i] == f ? test_[f] : train_[f]).push_back(i);
+    designs_.emplace_back(design(train_[f], Eigen::all), settings);
+  }
+}
+
 void FoldErrors::finish(CvScore& score) const {
   double total = 0.0;
   long n = 0;

@@ -20,6 +20,29 @@ int effective_folds(int samples, int requested);
 // Fold index (0..folds-1) of every sample; fold sizes differ by at most one.
 std::vector<int> assign_folds(int samples, int folds, std::uint64_t seed);
 
+// The samples (rows of a design) dealt into folds, with each fold's training rows checked once
+// (LinearDesign): everything of a cross-validation that does not depend on the data fitted, so
+// that one split serves every right-hand side sampled at the same rows. Fewer than 2 samples
+// give no folds.
+class FoldDesigns {
+ public:
+  FoldDesigns(const Eigen::MatrixXd& design, int requested_folds, std::uint64_t seed, const LmSettings& settings);
+
+  int samples() const { return samples_; }
+  int parameters() const { return parameters_; }
+  int folds() const { return static_cast<int>(designs_.size()); }
+  const std::vector<int>& train(int fold) const { return train_[fold]; }
+  const std::vector<int>& test(int fold) const { return test_[fold]; }
+  const LinearDesign& design(int fold) const { return designs_[fold]; }
+
+ private:
+  int samples_;
+  int parameters_;
+  std::vector<std::vector<int>> train_;
+  std::vector<std::vector<int>> test_;
+  std::vector<LinearDesign> designs_;
+};
+
 struct CvScore {
   FitStatus status = FitStatus::ok;  // the first refusal met in any fold
   std::string message;

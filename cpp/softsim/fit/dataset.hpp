@@ -2,7 +2,6 @@
 // The data the fits learn from: load cases on one body, each a force at the loaded node and the
 // displacement of every surface node (002 §3: "the displacement of all nodes corresponding to a
 // given spatial force was calculated by global meshless method in advance").
-#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,7 +19,6 @@ struct LoadCase {
 struct Dataset {
   std::string source;  // where it came from (path), for messages
   std::string kind;    // "axis_x", "axis_y", "axis_z", "random", "check", ...
-  std::optional<std::int64_t> seed;
   int loaded_node = 0;    // 0-based row of `nodes`
   Eigen::MatrixXd nodes;  // nodes × 3, m (the surface the fits describe)
   std::vector<LoadCase> cases;

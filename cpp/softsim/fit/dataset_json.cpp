@@ -1,5 +1,7 @@
 #include "softsim/fit/dataset_json.hpp"
 
+#include <cstdint>
+
 #include "softsim/io/artifact.hpp"
 
 namespace softsim::fit {
@@ -23,7 +25,8 @@ Dataset dataset_from_json(const io::JsonReader& payload, const std::string& sour
   const io::JsonReader info = payload.at("dataset");
   ds.kind = info.get_string("kind");
   const std::int64_t count = info.get_int("count");
-  if (info.has("seed") && !info.at("seed").raw().is_null()) ds.seed = info.get_int("seed");
+  // The seed of a random dataset is only provenance here, but a malformed one is still bad input.
+  if (info.has("seed") && !info.at("seed").raw().is_null()) info.get_int("seed");
 
   ds.nodes = read_xyz_rows(payload.at("top_nodes"));
   const long n = static_cast<long>(ds.nodes.rows());

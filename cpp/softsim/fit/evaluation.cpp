@@ -20,11 +20,6 @@ void ErrorAccumulator::add(const double* predicted, const Eigen::MatrixXd& refer
   ++cases_;
 }
 
-void ErrorAccumulator::add(const Eigen::MatrixXd& predicted, const Eigen::MatrixXd& reference) {
-  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> p = predicted;
-  add(p.data(), reference);
-}
-
 ComponentErrors ErrorAccumulator::result() const {
   ComponentErrors r;
   r.samples = static_cast<long>(nodes_) * cases_;

@@ -19,11 +19,9 @@ class ErrorAccumulator {
   explicit ErrorAccumulator(int nodes);
   // predicted: 3n values node-major; reference: nodes × 3. Adds one case.
   void add(const double* predicted, const Eigen::MatrixXd& reference);
-  void add(const Eigen::MatrixXd& predicted, const Eigen::MatrixXd& reference);
   ComponentErrors result() const;
   // nodes × 3: mean of predicted − reference at each node over the cases added.
   Eigen::MatrixXd mean_deviation() const;
-  int cases() const { return cases_; }
 
  private:
   int nodes_;

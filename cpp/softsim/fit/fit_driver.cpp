@@ -1,6 +1,8 @@
 #include "softsim/fit/fit_driver.hpp"
 
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include "softsim/io/errors.hpp"
 
@@ -25,8 +27,6 @@ const char* to_string(Relation relation) {
 }
 
 namespace {
-
-constexpr const char* kAxis[3] = {"x", "y", "z"};
 
 void check_datasets(const std::array<const Dataset*, 3>& datasets) {
   const Dataset* first = nullptr;
@@ -110,6 +110,52 @@ std::vector<CvScore> scores_of(const std::vector<CvCandidate>& c) {
   return out;
 }
 
+// The order of relation 1 or 3: the configured one, or the one cross-validation chooses among
+// 0..max_order (scored by score_order(k)); `choice` says which. When CV runs, its table joins
+// `tables`; for a configured order (cv_every_model) it shows the preferred row but none chosen.
+template <class ScoreOrder>
+int choose_order(CvTable table, int max_order, const std::optional<int>& fixed_order, bool cv_every_model,
+                 Selection selection, const std::string& what, ScoreOrder&& score_order, Choice& choice,
+                 std::vector<CvTable>& tables) {
+  int order = fixed_order.value_or(0);
+  if (!fixed_order || cv_every_model) {
+    for (int k = 0; k <= max_order; ++k) table.candidates.push_back(order_candidate(k, score_order(k)));
+    table.chosen = select_candidate(scores_of(table.candidates), complexities(table.candidates, false), selection,
+                                    table.exact_floor_mse);
+    table.preferred = table.chosen;
+    if (!fixed_order) {
+      choice = chosen_from(table, table.chosen, what);
+      order = table.candidates[table.chosen].order;
+    } else {
+      table.chosen = -1;
+    }
+    tables.push_back(std::move(table));
+  }
+  if (fixed_order) choice = from_config();
+  return order;
+}
+
+// The surface CV of every candidate, built on first use and shared by every direction and
+// component: it depends on the terms and the model's nodes only, which every direction uses.
+class SurfaceCvCache {
+ public:
+  SurfaceCvCache(const SurfaceFrame& frame, const Eigen::MatrixXd& xy, const FitOptions& options)
+      : frame_(frame), xy_(xy), options_(options) {}
+
+  CvScore score(const SurfaceTerms& terms, const Eigen::MatrixXd& values) {
+    const std::tuple<SurfaceModel, int, int, int> key{terms.model, terms.order_x, terms.order_y, terms.degree};
+    auto it = cache_.find(key);
+    if (it == cache_.end()) it = cache_.emplace(key, SurfaceCv(terms, frame_, xy_, options_)).first;
+    return it->second.score(values);
+  }
+
+ private:
+  const SurfaceFrame& frame_;
+  const Eigen::MatrixXd& xy_;
+  const FitOptions& options_;
+  std::map<std::tuple<SurfaceModel, int, int, int>, SurfaceCv> cache_;
+};
+
 }  // namespace
 
 FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const FitSettings& settings,
@@ -139,6 +185,7 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
     model.frame.y = input_scale(ys, opt.scale_inputs);
   }
   const Eigen::MatrixXd& xy = model.nodes;
+  SurfaceCvCache surface_cv(model.frame, xy, opt);
 
   for (int d = 0; d < 3; ++d) {
     const Dataset* ds = datasets[d];
@@ -154,28 +201,15 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
     const std::vector<double> force = force_components(*ds, d);
     const std::vector<double> delta = loaded_displacements(*ds, d);
     const AffineScale force_scale = input_scale(force, opt.scale_inputs);
-    int force_order = fixed.force_order.value_or(0);
     const std::string what1 = name(d, -1, "relation 1 (loaded-node displacement)");
-    if (!fixed.force_order || cv_every_model) {
-      CvTable table;
-      table.relation = Relation::force_to_loaded;
-      table.direction = d;
-      const Eigen::Map<const Eigen::VectorXd> dv(delta.data(), static_cast<Eigen::Index>(delta.size()));
-      table.exact_floor_mse = exact_floor_mse(dv, opt.exact_relative);
-      for (int k = 0; k <= lim.force; ++k)
-        table.candidates.push_back(order_candidate(k, cv_polynomial(force, delta, k, force_scale, opt)));
-      table.chosen = select_candidate(scores_of(table.candidates), complexities(table.candidates, false),
-                                      opt.selection, table.exact_floor_mse);
-      table.preferred = table.chosen;
-      if (!fixed.force_order) {
-        rep.force_choice = chosen_from(table, table.chosen, what1);
-        force_order = table.candidates[table.chosen].order;
-      } else {
-        table.chosen = -1;
-      }
-      result.cv_tables.push_back(std::move(table));
-    }
-    if (fixed.force_order) rep.force_choice = from_config();
+    CvTable force_table;
+    force_table.relation = Relation::force_to_loaded;
+    force_table.direction = d;
+    const Eigen::Map<const Eigen::VectorXd> dv(delta.data(), static_cast<Eigen::Index>(delta.size()));
+    force_table.exact_floor_mse = exact_floor_mse(dv, opt.exact_relative);
+    const int force_order = choose_order(
+        std::move(force_table), lim.force, fixed.force_order, cv_every_model, opt.selection, what1,
+        [&](int k) { return cv_polynomial(force, delta, k, force_scale, opt); }, rep.force_choice, result.cv_tables);
     {
       FitOptions o = opt;
       o.lm.record_history = true;
@@ -207,7 +241,7 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
         for (int a = 0; a <= lim.surface_x; ++a)
           for (int b = 0; b <= lim.surface_y; ++b) {
             const SurfaceTerms terms = SurfaceTerms::separable(a, b);
-            t.candidates.push_back(surface_candidate(terms, cv_surface(terms, model.frame, xy, values, opt)));
+            t.candidates.push_back(surface_candidate(terms, surface_cv.score(terms, values)));
           }
         surface_tables.push_back(std::move(t));
       }
@@ -217,7 +251,7 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
         t.model = SurfaceModel::bivariate;
         for (int n = 0; n <= lim.bivariate; ++n) {
           const SurfaceTerms terms = SurfaceTerms::bivariate(n);
-          t.candidates.push_back(surface_candidate(terms, cv_surface(terms, model.frame, xy, values, opt)));
+          t.candidates.push_back(surface_candidate(terms, surface_cv.score(terms, values)));
         }
         surface_tables.push_back(std::move(t));
       }
@@ -267,29 +301,16 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
       // ---- relation 3 (002 eqs. 45–46) ----
       const std::string what3 = name(d, c, "relation 3 (surface coefficients)");
       const Eigen::MatrixXd S = surface_design(cm.surface, model.frame, xy);
-      int parameter_order = cfix.parameter_order.value_or(0);
-      if (!cfix.parameter_order || cv_every_model) {
-        CvTable table;
-        table.relation = Relation::parameters;
-        table.direction = d;
-        table.component = c;
-        table.model = cm.surface.model;
-        table.exact_floor_mse = floor;
-        for (int k = 0; k <= lim.parameter; ++k)
-          table.candidates.push_back(
-              order_candidate(k, cv_parameter_relation(delta, dm.delta_scale, coefficients, S, k, opt)));
-        table.chosen = select_candidate(scores_of(table.candidates), complexities(table.candidates, false),
-                                        opt.selection, floor);
-        table.preferred = table.chosen;
-        if (!cfix.parameter_order) {
-          crep.parameter_choice = chosen_from(table, table.chosen, what3);
-          parameter_order = table.candidates[table.chosen].order;
-        } else {
-          table.chosen = -1;
-        }
-        result.cv_tables.push_back(std::move(table));
-      }
-      if (cfix.parameter_order) crep.parameter_choice = from_config();
+      CvTable parameter_table;
+      parameter_table.relation = Relation::parameters;
+      parameter_table.direction = d;
+      parameter_table.component = c;
+      parameter_table.model = cm.surface.model;
+      parameter_table.exact_floor_mse = floor;
+      const int parameter_order = choose_order(
+          std::move(parameter_table), lim.parameter, cfix.parameter_order, cv_every_model, opt.selection, what3,
+          [&](int k) { return cv_parameter_relation(delta, dm.delta_scale, coefficients, S, k, opt); },
+          crep.parameter_choice, result.cv_tables);
       cm.parameter_order = parameter_order;
       cm.beta = fit_parameter_relation(delta, dm.delta_scale, coefficients, parameter_order, opt,
                                        what3 + ", order " + std::to_string(parameter_order), &crep.parameter_fit);

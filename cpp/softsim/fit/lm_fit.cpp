@@ -108,7 +108,8 @@ LinearFit LinearDesign::solve(const Eigen::VectorXd& y) const {
   if (status_ != FitStatus::ok) return fit;
 
   // Residuals of order one make the absolute gradient tolerance meaningful for any data unit.
-  const double y_scale = y.size() > 0 && y.cwiseAbs().maxCoeff() > 0.0 ? y.cwiseAbs().maxCoeff() : 1.0;
+  const double y_max = y.size() > 0 ? y.cwiseAbs().maxCoeff() : 0.0;
+  const double y_scale = y_max > 0.0 ? y_max : 1.0;
   const Eigen::VectorXd y_scaled = y / y_scale;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(design_.cols());
 

@@ -63,7 +63,6 @@ class LinearDesign {
   FitStatus status() const { return status_; }
   const std::string& message() const { return message_; }
   double condition() const { return condition_; }
-  const Eigen::MatrixXd& matrix() const { return design_; }
   int samples() const { return static_cast<int>(design_.rows()); }
   int parameters() const { return static_cast<int>(design_.cols()); }
 

@@ -16,6 +16,9 @@
 
 namespace softsim::fit {
 
+// Names of the load directions d and displacement components c = 0, 1, 2 (artifact keys, messages).
+inline constexpr const char* kAxis[3] = {"x", "y", "z"};
+
 struct ComponentModel {
   SurfaceTerms surface;     // relation 2
   int parameter_order = 0;  // k of relation 3

@@ -10,8 +10,6 @@ namespace softsim::fit {
 
 namespace {
 
-constexpr const char* kAxis[3] = {"x", "y", "z"};
-
 AffineScale scale_from_json(const io::JsonReader& node) {
   AffineScale s;
   s.center = node.get_double("center");

@@ -9,17 +9,6 @@ namespace softsim::fit {
 
 namespace {
 
-struct Split {
-  std::vector<int> train;
-  std::vector<int> test;
-};
-
-Split split_fold(const std::vector<int>& fold, int f) {
-  Split s;
-  for (int i = 0; i < static_cast<int>(fold.size()); ++i) (fold[i] == f ? s.test : s.train).push_back(i);
-  return s;
-}
-
 void note_condition(CvScore& score, double condition) {
   if (!(condition <= score.max_condition)) score.max_condition = condition;  // keeps +inf
 }
@@ -32,45 +21,44 @@ void throw_refused(const std::string& what, FitStatus status, const std::string&
   throw NumericalError(what + ": " + to_string(status) + ": " + message);
 }
 
-// k-fold cross-validation, the same for the three relations: the rows of the design A are the
+// k-fold cross-validation, the same for the three relations: the rows of the design are the
 // samples; each fold's training rows are solved for every column of Y (one right-hand side per
 // column, e.g. one load case), and add_errors(f, test rows, coefficients B with one column per
 // right-hand side, errors) books the fold's test errors. A failure refuses the score.
 template <class AddErrors>
-CvScore cross_validate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Y, const std::string& too_few,
-                       const FitOptions& options, AddErrors&& add_errors) {
+CvScore cross_validate(const FoldDesigns& folds, const Eigen::MatrixXd& Y, const std::string& too_few,
+                       AddErrors&& add_errors) {
   CvScore score;
-  score.parameters = static_cast<int>(A.cols());
-  const int n = static_cast<int>(A.rows());
-  if (n < 2) {
+  score.parameters = folds.parameters();
+  if (folds.samples() < 2) {
     refuse(score, FitStatus::too_few_samples, too_few);
     return score;
   }
-  const int k = effective_folds(n, options.folds);
-  const std::vector<int> fold = assign_folds(n, k, options.seed);
-  FoldErrors errors(k);
-  Eigen::MatrixXd B(A.cols(), Y.cols());
-  for (int f = 0; f < k; ++f) {
-    const Split s = split_fold(fold, f);
-    const LinearDesign design(A(s.train, Eigen::all), options.lm);
+  FoldErrors errors(folds.folds());
+  Eigen::MatrixXd B(folds.parameters(), Y.cols());
+  for (int f = 0; f < folds.folds(); ++f) {
+    const LinearDesign& design = folds.design(f);
     note_condition(score, design.condition());
     if (design.status() != FitStatus::ok) {
       refuse(score, design.status(), fold_message(f, design.message()));
       return score;
     }
     for (Eigen::Index c = 0; c < Y.cols(); ++c) {
-      const Eigen::VectorXd column = Y.col(c);
-      const LinearFit fit = design.solve(column(s.train));
+      const LinearFit fit = design.solve(Y(folds.train(f), c));
       if (!fit.ok()) {
         refuse(score, fit.status, fold_message(f, fit.message));
         return score;
       }
       B.col(c) = fit.coefficients;
     }
-    add_errors(f, s.test, B, errors);
+    add_errors(f, folds.test(f), B, errors);
   }
   errors.finish(score);
   return score;
+}
+
+FoldDesigns fold_designs(const Eigen::MatrixXd& design, const FitOptions& options) {
+  return FoldDesigns(design, options.folds, options.seed, options.lm);
 }
 
 }  // namespace
@@ -111,7 +99,8 @@ CvScore cv_polynomial(const std::vector<double>& x, const std::vector<double>& y
                       const AffineScale& scale, const FitOptions& options) {
   const Eigen::MatrixXd A = polynomial_design(options.basis, scale, x, order);
   const Eigen::Map<const Eigen::VectorXd> yv(y.data(), static_cast<Eigen::Index>(y.size()));
-  return cross_validate(A, yv, "cross-validation needs at least 2 samples, got " + std::to_string(x.size()), options,
+  return cross_validate(fold_designs(A, options), yv,
+                        "cross-validation needs at least 2 samples, got " + std::to_string(x.size()),
                         [&](int f, const std::vector<int>& test, const Eigen::MatrixXd& B, FoldErrors& errors) {
                           for (int i : test) {
                             const double e = A.row(i).dot(B.col(0)) - yv[i];
@@ -159,18 +148,24 @@ Eigen::MatrixXd fit_surfaces(const SurfaceTerms& terms, const SurfaceFrame& fram
   return coefficients;
 }
 
-CvScore cv_surface(const SurfaceTerms& terms, const SurfaceFrame& frame, const Eigen::MatrixXd& xy,
-                   const Eigen::MatrixXd& values, const FitOptions& options) {
-  const Eigen::MatrixXd A = surface_design(terms, frame, xy);
-  return cross_validate(A, values, "cross-validation needs at least 2 nodes", options,
+SurfaceCv::SurfaceCv(const SurfaceTerms& terms, const SurfaceFrame& frame, const Eigen::MatrixXd& xy,
+                     const FitOptions& options)
+    : design_(surface_design(terms, frame, xy)), folds_(fold_designs(design_, options)) {}
+
+CvScore SurfaceCv::score(const Eigen::MatrixXd& values) const {
+  return cross_validate(folds_, values, "cross-validation needs at least 2 nodes",
                         [&](int f, const std::vector<int>& test, const Eigen::MatrixXd& B, FoldErrors& errors) {
-                          const Eigen::MatrixXd A_test = A(test, Eigen::all);
+                          const Eigen::MatrixXd A_test = design_(test, Eigen::all);
                           for (Eigen::Index c = 0; c < values.cols(); ++c) {
-                            const Eigen::VectorXd column = values.col(c);
-                            const Eigen::VectorXd e = A_test * B.col(c) - column(test);
+                            const Eigen::VectorXd e = A_test * B.col(c) - values(test, c);
                             for (Eigen::Index i = 0; i < e.size(); ++i) errors.add(f, e[i] * e[i]);
                           }
                         });
+}
+
+CvScore cv_surface(const SurfaceTerms& terms, const SurfaceFrame& frame, const Eigen::MatrixXd& xy,
+                   const Eigen::MatrixXd& values, const FitOptions& options) {
+  return SurfaceCv(terms, frame, xy, options).score(values);
 }
 
 // ---------------- relation 3 ----------------
@@ -201,7 +196,8 @@ CvScore cv_parameter_relation(const std::vector<double>& delta, const AffineScal
                               const Eigen::MatrixXd& coefficients, const Eigen::MatrixXd& surface_design,
                               int order, const FitOptions& options) {
   const Eigen::MatrixXd Phi = polynomial_design(options.basis, delta_scale, delta, order);
-  return cross_validate(Phi, coefficients.transpose(), "cross-validation needs at least 2 load cases", options,
+  return cross_validate(fold_designs(Phi, options), coefficients.transpose(),
+                        "cross-validation needs at least 2 load cases",
                         [&](int f, const std::vector<int>& test, const Eigen::MatrixXd& B, FoldErrors& errors) {
                           const Eigen::MatrixXd beta = B.transpose();
                           for (int i : test) {

@@ -64,7 +64,22 @@ Eigen::MatrixXd fit_surfaces(const SurfaceTerms& terms, const SurfaceFrame& fram
                              const Eigen::MatrixXd& xy, const Eigen::MatrixXd& values,
                              const FitOptions& options, const std::string& what,
                              FitSummary* summary = nullptr);
-// k-fold over the nodes (the same held-out nodes for every case).
+// k-fold over the nodes (the same held-out nodes for every case). The design over the nodes, its
+// fold split and each fold's checked training design depend on the terms and the nodes only, not
+// on the values: one SurfaceCv scores a candidate for every displacement component of every load
+// direction sampled at the same nodes.
+class SurfaceCv {
+ public:
+  SurfaceCv(const SurfaceTerms& terms, const SurfaceFrame& frame, const Eigen::MatrixXd& xy,
+            const FitOptions& options);
+  // values: nodes × cases.
+  CvScore score(const Eigen::MatrixXd& values) const;
+
+ private:
+  Eigen::MatrixXd design_;
+  FoldDesigns folds_;
+};
+// One candidate scored once: SurfaceCv(terms, frame, xy, options).score(values).
 CvScore cv_surface(const SurfaceTerms& terms, const SurfaceFrame& frame, const Eigen::MatrixXd& xy,
                    const Eigen::MatrixXd& values, const FitOptions& options);
 

@@ -10,8 +10,6 @@ namespace softsim::fit {
 
 namespace {
 
-constexpr const char* kAxis[3] = {"x", "y", "z"};
-
 nlohmann::json vec3(const Eigen::Vector3d& v) { return {v[0], v[1], v[2]}; }
 
 nlohmann::json choice_to_json(const Choice& c) {

@@ -4,8 +4,6 @@ namespace softsim::fit {
 
 namespace {
 
-constexpr const char* kAxis[3] = {"x", "y", "z"};
-
 int read_order(const io::JsonReader& node, const std::string& key, int fallback) {
   const std::int64_t v = node.get_int(key, fallback);
   node.require(v >= 0 && v <= kMaxOrder, key, "an order between 0 and " + std::to_string(kMaxOrder));
