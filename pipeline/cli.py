@@ -54,7 +54,7 @@ def cmd_list(_args) -> int:
 
 def cmd_clean(args) -> int:
     shutil.rmtree(CACHE, ignore_errors=True)
-    print(f"pipeline: removed the run cache")
+    print("pipeline: removed the run cache")
     if args.results:
         for p in RESULTS.glob("*"):
             if p.is_dir():

@@ -23,6 +23,18 @@ def assemble() -> None:
     (RESULTS / "REPORT.md").write_text("\n".join(parts))
 
 
+def read_parts(folder, names) -> list:
+    """The parts of a summary present in `folder`, in the order of `names`, each without
+    surrounding blank lines and ended by one newline."""
+    return [(folder / name).read_text().strip() + "\n" for name in names if (folder / name).exists()]
+
+
+def gather_parts(ctx, names, into: str = "summary.md") -> None:
+    """A results folder's summary from the parts its reports wrote, in a fixed order, a blank line
+    apart: complete whichever report ran last."""
+    ctx.out(into).write_text("\n".join(read_parts(ctx.results_dir, names)))
+
+
 LINK = re.compile(r"(\]\()([^)#\s]+)(\))")
 
 

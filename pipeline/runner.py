@@ -3,9 +3,7 @@ import ast
 import importlib
 import importlib.util
 import json
-import os
 import subprocess
-import sys
 import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait

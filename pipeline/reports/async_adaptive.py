@@ -69,7 +69,6 @@ def report(ctx):
     axes[0].set_title("Fixed and adaptable primary region under a growing deformation (like 001 Fig. 8)", fontsize=9)
     plots.save(fig, ctx.out("adaptive.png"))
 
-    by = {name(r): r for r in rows}
     fixed10 = next((r for r in rows if r["policy"] == "fixed" and r["n"] == 10), None)
     lin = next((r for r in rows if r["policy"] == "linear" and not r["run"].payload["async"]["primary"].get("hold_time")), None)
     held = next((r for r in rows if r["policy"] == "linear" and r["run"].payload["async"]["primary"].get("hold_time")), None)

@@ -2,6 +2,7 @@
 import numpy as np
 
 from pipeline import plots
+from pipeline.report_md import gather_parts
 
 
 def run_row(run):
@@ -87,9 +88,4 @@ SUMMARY_PARTS = ["summary_table.md", "summary_inputs.md", "summary_adaptive.md",
 
 def gather_summary(ctx):
     """results/async/summary.md: the parts written by the async_* reports, in a fixed order."""
-    parts = []
-    for name in SUMMARY_PARTS:
-        path = ctx.results_dir / name
-        if path.exists():
-            parts.append(path.read_text().strip() + "\n")
-    ctx.out("summary.md").write_text("\n".join(parts))
+    gather_parts(ctx, SUMMARY_PARTS)

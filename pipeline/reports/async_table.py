@@ -54,7 +54,7 @@ def held_table(ctx, interp, held):
     cap = ("Secondary values interpolated (001 Fig. 4, one update late) or held between updates, E = "
            f"{held[0]['E'] / 1000:g} kPa, chirp. max |Δ²F| is the largest second difference of the force over "
            "consecutive frames: a jump J in the force shows as about J, a smooth force as O(frame step²).")
-    return write_table(ctx, "held_vs_interpolated", headers, out, cap)
+    write_table(ctx, "held_vs_interpolated", headers, out, cap)
 
 
 def in_turn_table(ctx, in_turn, sweep):
@@ -71,7 +71,7 @@ def in_turn_table(ctx, in_turn, sweep):
            "after the other (001 eq. 7 with the other region's values on the right-hand side, one block Gauss-Seidel "
            "sweep per frame). Its error is that of the exchange between regions alone; the other columns add the lower "
            "secondary rate.")
-    return write_table(ctx, "exchange_error", headers, out, cap)
+    write_table(ctx, "exchange_error", headers, out, cap)
 
 
 def dense_table(ctx, dense):
@@ -80,7 +80,7 @@ def dense_table(ctx, dense):
     headers = ["n", "f (Hz)", "time/frame regions (µs)", "time/frame whole (µs)", "speed gain", "RMS error vs whole (%)"]
     cap = ("Dense Cholesky solves (the direct elimination of 001 §4, cost growing with the square of the region "
            "size) instead of the sparse factorisation, E = 5 kPa.")
-    return write_table(ctx, "dense_timing", headers, out, cap)
+    write_table(ctx, "dense_timing", headers, out, cap)
 
 
 def tradeoff(ctx, rows, thresholds):
@@ -178,9 +178,9 @@ def report(ctx):
     in_turn = C.rows(ctx, "in_turn")
     forces = C.rows(ctx, "forces")
     tables = {E: table1(ctx, sweep, E) for E in sorted({r["E"] for r in sweep})}
-    held_md = held_table(ctx, sweep, held)
-    dense_md = dense_table(ctx, dense)
-    exchange_md = in_turn_table(ctx, in_turn, sweep)
+    held_table(ctx, sweep, held)
+    dense_table(ctx, dense)
+    in_turn_table(ctx, in_turn, sweep)
     best = tradeoff(ctx, sweep, thresholds)
     E_plot = params.get("frequency_plot_modulus", 5000)
     error_vs_frequency(ctx, sweep, E_plot)

@@ -22,6 +22,7 @@ import re
 import numpy as np
 
 from pipeline import plots
+from pipeline.report_md import read_parts
 
 KIND_NAMES = {0: "linear", 1: "tled", 2: "corotational"}   # fem::ElementKind
 SECTION_DIR = "sections"
@@ -51,15 +52,6 @@ def displacement_error(u, u_ref, applied: float = None, moving_share: float = 0.
     }
 
 
-METRIC_LABELS = {
-    "rel_mean": "Σ|Δu| / Σ|u_TLED|",
-    "rel_applied": "mean |Δu| / applied displacement",
-    "rel_rms": "RMS |Δu| / RMS |u_TLED|",
-    "rel_max": "max |Δu| / max |u_TLED|",
-    "rel_per_node": "mean over moving nodes of |Δu| / |u_TLED|",
-}
-
-
 # --------------------------------------------------------------------------- Pareto front
 def pareto_front(times, errors) -> list:
     """Indices of the points no other point beats in both time and error (both minimised),
@@ -85,8 +77,14 @@ def pct(x, digits=1):
     return None if x is None else round(100.0 * x, digits)
 
 
-def paper_label(text: str) -> str:
-    return f"{text} (paper)"
+DISPLAY_UNITS = {"cm": 100.0, "mm": 1000.0, "m": 1.0}
+
+
+def display_unit(ctx):
+    """The unit applied displacements are shown in (params "display_unit", cm by default) and
+    its factor from metres."""
+    unit = ctx.params.get("display_unit", "cm")
+    return unit, DISPLAY_UNITS[unit]
 
 
 # --------------------------------------------------------------------------- pictures
@@ -176,7 +174,7 @@ def assemble_summary(ctx) -> None:
     found = {p.stem: p for p in section_dir.glob("*.md")} if section_dir.exists() else {}
     facts = {p.stem: json.loads(p.read_text()) for p in section_dir.glob("*.json")} if section_dir.exists() else {}
     keys = [k for k in SECTION_ORDER if k in found] + sorted(k for k in found if k not in SECTION_ORDER)
-    parts = [SUMMARY_HEAD, verdict(facts)] + [found[k].read_text().strip() + "\n" for k in keys]
+    parts = [SUMMARY_HEAD, verdict(facts)] + read_parts(section_dir, [f"{k}.md" for k in keys])
     ctx.out("summary.md").write_text("\n".join(p for p in parts if p))
 
 
@@ -266,7 +264,6 @@ def save(fig, ctx, name: str) -> str:
 
 # --------------------------------------------------------------------------- engine artifacts
 # The only places that know the dhd_sim config and "dhd_result" payload (cpp/apps/dhd_sim.md).
-CHEAP_KINDS = ("linear", "corotational")
 
 
 def applied_vector(config: dict) -> np.ndarray:

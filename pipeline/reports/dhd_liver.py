@@ -9,13 +9,12 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.reports import dhd_common as common
-from pipeline.reports.dhd_partition import family_rows
+from pipeline.reports.dhd_partition import family_rows, run_at, share_winners, shares_at
 from pipeline.tables import fmt, write_table
 
 
 def report(ctx):
-    unit = ctx.params.get("display_unit", "cm")
-    unit_scale = {"cm": 100.0, "mm": 1000.0, "m": 1.0}[unit]
+    unit, unit_scale = common.display_unit(ctx)
     mesh_run = ctx.runs(ctx.params.get("sets", "sets"))[0]
     mesh = mesh_run.payload
     nodes = np.asarray(mesh["nodes"], dtype=float)
@@ -36,16 +35,12 @@ def report(ctx):
 
     mds = []
     for load in loads:
-        shares = sorted({round(x["r"], 6) for fam in data.values() for x in fam.get(load, [])})
         body = []
-        for r in shares:
+        for r in shares_at(data, load):
             row = [f"{int(round(100 * r))} %"]
-            for label in labels:
-                g = next((x for x in data[label].get(load, []) if round(x["r"], 6) == r), None)
-                row.append(common.pct(g["error"]["rel_mean"], 3) if g else None)
-            for label in labels:
-                g = next((x for x in data[label].get(load, []) if round(x["r"], 6) == r), None)
-                row.append(g["error"]["max_diff"] * 1e3 if g else None)
+            runs = [run_at(data, label, load, r) for label in labels]
+            row += [common.pct(g["error"]["rel_mean"], 3) if g else None for g in runs]
+            row += [g["error"]["max_diff"] * 1e3 if g else None for g in runs]
             body.append(row)
         name = f"liver_{fmt(load * unit_scale)}{unit}".replace(".", "p")
         mds.append(write_table(
@@ -137,10 +132,7 @@ def report(ctx):
         "Plot: [dhd/liver_error.png](dhd/liver_error.png).\n", " ".join(words) + "\n"]
     wins = {}
     for load in loads:
-        for r in sorted({round(x["r"], 6) for fam in data.values() for x in fam.get(load, [])}):
-            cands = [(x["error"]["rel_mean"], lab) for lab in labels for x in data[lab].get(load, [])
-                     if round(x["r"], 6) == r and 0 < x["cheap_elements"] < x["elements"]]
-            if cands:
-                wins[min(cands)[1]] = wins.get(min(cands)[1], 0) + 1
+        for label in share_winners(data, load):
+            wins[label] = wins.get(label, 0) + 1
     facts = {"best_family": max(wins, key=wins.get) if wins else None, "wins": wins}
     common.write_section(ctx, "liver", "\n".join(lines), facts)

@@ -34,8 +34,7 @@ def paper_points(paper: dict):
 
 
 def report(ctx):
-    unit = ctx.params.get("display_unit", "cm")
-    unit_scale = {"cm": 100.0, "mm": 1000.0, "m": 1.0}[unit]
+    unit, unit_scale = common.display_unit(ctx)
     data = family_rows(ctx, ctx.params["stages"])
     labels = list(data)
     loads = sorted({load for fam in data.values() for load in fam})

@@ -59,6 +59,28 @@ def family_rows(ctx, stages):
     return out
 
 
+def shares_at(data, load):
+    """The shares r (to 6 digits) of every family's runs at a load, ascending."""
+    return sorted({round(x["r"], 6) for fam in data.values() for x in fam.get(load, [])})
+
+
+def run_at(data, label, load, r):
+    """A family's run at a load and share r (to 6 digits), or None."""
+    return next((x for x in data[label].get(load, []) if round(x["r"], 6) == r), None)
+
+
+def share_winners(data, load):
+    """For each share of a load with mixed runs (0 < r < 1), ascending, the family of least mean
+    error there; a tie goes to the label first in sort order."""
+    winners = []
+    for r in shares_at(data, load):
+        cands = [(x["error"]["rel_mean"], label) for label in data for x in data[label].get(load, [])
+                 if round(x["r"], 6) == r and 0 < x["cheap_elements"] < x["elements"]]
+        if cands:
+            winners.append(min(cands)[1])
+    return winners
+
+
 def best_speedup_within(points, budget):
     """Largest speed-up (t_ref / t) over points (speed-up, error) sorted by r, with the error
     interpolated linearly between neighbouring shares, that keeps the error ≤ budget."""
@@ -76,8 +98,7 @@ def best_speedup_within(points, budget):
 
 
 def report(ctx):
-    unit = ctx.params.get("display_unit", "cm")
-    unit_scale = {"cm": 100.0, "mm": 1000.0, "m": 1.0}[unit]
+    unit, unit_scale = common.display_unit(ctx)
     budgets = ctx.params.get("budgets", [0.02, 0.05, 0.10])
     data = family_rows(ctx, ctx.params["stages"])
     labels = list(data)
@@ -89,12 +110,11 @@ def report(ctx):
     loads = sorted({load for fam in data.values() for load in fam})
     mds = []
     for load in loads:
-        shares = sorted({round(g["r"], 6) for fam in data.values() for g in fam.get(load, [])})
         body = []
-        for r in shares:
+        for r in shares_at(data, load):
             row = [f"{int(round(100 * r))} %"]
             for label in labels:
-                g = next((x for x in data[label].get(load, []) if round(x["r"], 6) == r), None)
+                g = run_at(data, label, load, r)
                 row.append(common.pct(g["error"]["rel_mean"], 2) if g else None)
             for kind in ("linear", "corotational"):
                 if kind in uniform:
@@ -151,15 +171,10 @@ def report(ctx):
     total_wins, total_shares = {}, 0
     for load in loads:
         wins = {}
-        for r in sorted({round(x["r"], 6) for fam in data.values() for x in fam.get(load, [])}):
-            if r in (0.0, 1.0):
-                continue
-            cands = [(x["error"]["rel_mean"], label) for label in labels
-                     for x in data[label].get(load, []) if round(x["r"], 6) == r]
-            if cands:
-                wins[min(cands)[1]] = wins.get(min(cands)[1], 0) + 1
-                total_wins[min(cands)[1]] = total_wins.get(min(cands)[1], 0) + 1
-                total_shares += 1
+        for label in share_winners(data, load):
+            wins[label] = wins.get(label, 0) + 1
+            total_wins[label] = total_wins.get(label, 0) + 1
+            total_shares += 1
         ranking = ", ".join(f"{k} at {v}" for k, v in sorted(wins.items(), key=lambda kv: -kv[1]))
         words.append(f"At {fmt(load * unit_scale)} {unit} the smallest error at equal r comes from: {ranking} "
                      "of the shares.")

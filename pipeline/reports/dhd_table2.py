@@ -33,8 +33,7 @@ def _paper_for(paper, load, unit_scale):
 
 
 def report(ctx):
-    unit = ctx.params.get("display_unit", "cm")
-    unit_scale = {"cm": 100.0, "mm": 1000.0, "m": 1.0}[unit]
+    unit, unit_scale = common.display_unit(ctx)
     paper = paper_tables(ctx)
     by_load = common.errors_against_reference(common.sim_rows(ctx, ctx.params.get("sim", "sim")))
     loads = sorted(by_load)

@@ -277,7 +277,7 @@ def _composite(ctx, fits):
 
 # ---------------------------------------------------------------- cross-validation
 
-def _cv(ctx, cv, fit):
+def _cv(ctx, cv):
     tables = cv["tables"]
     rows = []
     for t in tables:
@@ -574,7 +574,7 @@ def report(ctx):
                 "Range of the mean deviation (fit − RPIM, mean over 0.2 … 1.0 N) over the 121 top nodes, "
                 "as plotted in fit_deviation_*force_*.png; paper: the ranges stated with 002 Figs. 5, 8, 11.")
     _composite(ctx, fits)
-    compare = _cv(ctx, cv, headline) if cv else []
+    compare = _cv(ctx, cv) if cv else []
     _chosen_orders(ctx, fits)
     _runtime(ctx, headline, paper)
     _ansys(ctx, play, paper)

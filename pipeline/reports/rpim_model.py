@@ -16,8 +16,6 @@ params (stage names of experiments/rpim_datasets.json):
 Every number in a table is measured by this project; the paper's numbers (from the experiment's
 "paper" block) appear beside them, labelled "paper".
 """
-import json
-
 import numpy as np
 
 from pipeline import plots

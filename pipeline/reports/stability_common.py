@@ -1,19 +1,9 @@
 """Shared pieces of the stability reports: results/stability/summary.md is assembled from one
 part per experiment (summary_<part>.md), in a fixed reading order, whichever ran last."""
-from pipeline.hashing import file_hash
-from pipeline.stages.stability_common import tool_path
+from pipeline.report_md import gather_parts
 
-PARTS = [
-    ("summary_overview.md", None),
-    ("summary_timestep.md", "Explicit time step"),
-    ("summary_incompressible.md", "Near incompressibility"),
-    ("summary_inversion.md", "Large deformation and inversion"),
-    ("summary_quality.md", "Mesh quality"),
-    ("summary_longrun.md", "Damping and long runs"),
-    ("summary_rpim.md", "RPIM conditioning"),
-    ("summary_fit.md", "Marquardt fits"),
-    ("summary_bad_input.md", "Bad input"),
-]
+PARTS = ["summary_overview.md", "summary_timestep.md", "summary_incompressible.md", "summary_inversion.md",
+         "summary_quality.md", "summary_longrun.md", "summary_rpim.md", "summary_fit.md", "summary_bad_input.md"]
 
 OVERVIEW = """# Stability: where each method is safe, where it breaks, what the software does then
 
@@ -28,33 +18,7 @@ computed but inaccurate.
 
 def gather_summary(ctx):
     ctx.out("summary_overview.md").write_text(OVERVIEW)
-    parts = []
-    for name, _ in PARTS:
-        path = ctx.results_dir / name
-        if path.exists():
-            parts.append(path.read_text().strip() + "\n")
-    ctx.out("summary.md").write_text("\n".join(parts))
-
-
-def stale_tools(payload):
-    """Executables whose binary changed since the stage ran (its cache key covers only the stage
-    module and config): a note for the summary, so an outdated map is never silent."""
-    stale = []
-    for name, sha in payload.get("tools", {}).items():
-        try:
-            if file_hash(tool_path(name)) != sha:
-                stale.append(name)
-        except (OSError, ValueError):
-            stale.append(name)
-    return stale
-
-
-def stale_note(payloads):
-    names = sorted({n for p in payloads for n in stale_tools(p)})
-    if not names:
-        return ""
-    return (f"\n> Note: {', '.join(names)} changed after these runs (the stage is cached on its own "
-            f"code and config); rerun with `python -m pipeline run <experiment> --force` to refresh.\n")
+    gather_parts(ctx, PARTS)
 
 
 def fmt_factor(value, digits=3):

@@ -1,6 +1,6 @@
 """Marquardt fits under stress -> results/stability/fit_noise.md, fit_orders.md, fit_conditioning.md,
 fit_damping.md (+ CSV) and summary_fit.md."""
-from pipeline.reports.stability_common import gather_summary, stale_note
+from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
 
 
@@ -73,6 +73,5 @@ def report(ctx):
              "astray by its start — only slowed by a large initial damping; the real dangers are orders the data "
              "cannot determine and raw monomials of SI coordinates, and marquardt_fit refuses both rather than "
              "write a meaningless model."]
-    text.append(stale_note([p]))
-    ctx.out("summary_fit.md").write_text("\n".join(text) + "\n")
+    ctx.out("summary_fit.md").write_text("\n".join(text) + "\n\n")
     gather_summary(ctx)

@@ -1,6 +1,6 @@
 """Mesh quality -> results/stability/quality.md/csv, quality.png and summary_quality.md."""
 from pipeline import plots
-from pipeline.reports.stability_common import gather_summary, stale_note
+from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
 
 
@@ -67,6 +67,5 @@ def report(ctx):
         if r["case"] == "as read" and r.get("dt_critical"):
             text.append(f"- {r['mesh']}: smallest dihedral {r['min_dihedral_deg']:.1f}°, exact limit "
                         f"{r['dt_exact_linear'] / r['dt_critical']:.1f} × Δt_cr.")
-    text.append(stale_note([p]))
-    ctx.out("summary_quality.md").write_text("\n".join(text) + "\n")
+    ctx.out("summary_quality.md").write_text("\n".join(text) + "\n\n")
     gather_summary(ctx)

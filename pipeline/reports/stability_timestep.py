@@ -1,7 +1,7 @@
 """Explicit time-step map -> results/stability/timestep.md/csv, timestep_auto.md/csv,
 timestep_map.png and summary_timestep.md."""
 from pipeline import plots
-from pipeline.reports.stability_common import fmt_factor, gather_summary, stale_note
+from pipeline.reports.stability_common import fmt_factor, gather_summary
 from pipeline.tables import write_table
 
 COLOURS = {"stable": "tab:green", "energy growth": "tab:red", "inverted element": "tab:purple",
@@ -110,6 +110,5 @@ def report(ctx):
              "Beyond the limit dhd_sim stops with exit 3 within a few hundred steps (energy growth, or an inverted "
              "element when the oscillation grows large first) and writes no result; a requested step above "
              "Δt_cr is refused with exit 2 unless `solver.force_dt` is set."]
-    text.append(stale_note(payloads))
-    ctx.out("summary_timestep.md").write_text("\n".join(text) + "\n")
+    ctx.out("summary_timestep.md").write_text("\n".join(text) + "\n\n")
     gather_summary(ctx)

@@ -14,6 +14,7 @@ params:
 import numpy as np
 
 from pipeline import plots
+from pipeline.reports.dhd_common import displacement_error
 from pipeline.stages.calculix_analytic import uniaxial_linear, uniaxial_neo_hookean_decoupled
 from pipeline.tables import write_table
 
@@ -103,16 +104,13 @@ def _comparison_rows(ctx, nodes):
             dhd = dhd_runs.get(mat["model"])
             u_dhd = _dhd_displacement(dhd.payload) if dhd else None
             err = _rel(u_dhd, u_ccx) if u_dhd is not None else None
-            max_err = (float(np.linalg.norm(u_dhd - u_ccx, axis=1).max()
-                             / np.linalg.norm(u_ccx, axis=1).max())
-                       if u_dhd is not None else None)
+            max_err = displacement_error(u_dhd, u_ccx)["rel_max"] if u_dhd is not None else None
             if err is not None:
                 worst[(case["case"], mat["model"])] = err
             a = pl["analysis"]
             f_ccx = _top_reaction_vector(pl)
             f_dhd = _top_reaction_vector(dhd.payload) if dhd else None
-            f_err = (float(np.linalg.norm(f_dhd - f_ccx) / np.linalg.norm(f_ccx))
-                     if f_dhd is not None and f_ccx is not None else None)
+            f_err = _rel(f_dhd, f_ccx) if f_dhd is not None and f_ccx is not None else None
             rows.append([
                 case["case"], mat["model"], "yes" if a["nlgeom"] else "no",
                 err, max_err,

@@ -162,11 +162,27 @@ def mesh_lines(positions, element_type: str, elements) -> list:
     return L
 
 
+def _id_lines(ids) -> list:
+    """Ids 16 to a data line (the most a line holds)."""
+    ids = [str(n) for n in ids]
+    return [", ".join(ids[k:k + 16]) for k in range(0, len(ids), 16)]
+
+
 def nset_lines(name: str, ccx_nodes) -> list:
-    lines = [f"*NSET, NSET={name}"]
-    ids = [str(n) for n in ccx_nodes]
-    for k in range(0, len(ids), 16):
-        lines.append(", ".join(ids[k:k + 16]))
+    return [f"*NSET, NSET={name}"] + _id_lines(ccx_nodes)
+
+
+def elset_lines(name: str, ccx_elements) -> list:
+    return [f"*ELSET, ELSET={name}"] + _id_lines(ccx_elements)
+
+
+def material_lines(info: dict, name: str = "MAT") -> list:
+    """*MATERIAL of a material read by calculix_scene.read_material: its card and constants."""
+    lines = [f"*MATERIAL, NAME={name}", info["ccx_card"]]
+    if info["model"] == "linear":
+        lines.append(f"{fmt(info['E'])}, {fmt(info['nu'])}")
+    else:
+        lines.append(f"{fmt(info['C10'])}, {fmt(info['D1'])}")
     return lines
 
 
@@ -188,6 +204,19 @@ def static_step_lines(nlgeom: bool, increments: int, max_increments: int, min_in
     return [f"*STEP, NLGEOM, INC={max_increments}",
             "*STATIC, DIRECT" if fixed_increments else "*STATIC",
             f"{fmt(inc)}, 1.0, {fmt(min(min_increment, inc))}, {fmt(inc)}"]
+
+
+def section_and_step_lines(material: dict, analysis: dict) -> list:
+    """The material (named MAT) as the solid section of every element (EALL), then the opening
+    of the static step (`analysis` as read by calculix.read_analysis) and, with NLGEOM, its
+    Newton tolerances."""
+    L = material_lines(material)
+    L.append("*SOLID SECTION, ELSET=EALL, MATERIAL=MAT")
+    L += static_step_lines(analysis["nlgeom"], analysis["increments"], analysis["max_increments"],
+                           analysis["min_increment"], analysis["fixed_increments"])
+    if analysis["nlgeom"]:
+        L += field_controls_lines(analysis["residual_tolerance"], analysis["correction_tolerance"])
+    return L
 
 
 # --------------------------------------------------------------------------- running

@@ -15,14 +15,13 @@ shear and come out far too stiff; quadratic hexahedra with reduced integration (
 free of both and converge fastest. C3D8, C3D8I and C3D20 stay selectable for comparison.
 """
 import time
-from pathlib import Path
 
 import numpy as np
 
-from pipeline.stages.calculix import material_lines, read_analysis
+from pipeline.stages.calculix import read_analysis
 from pipeline.stages.calculix_ccx import (
-    CalculixNumericalError, ConfigReader, ccx_version, field_controls_lines, fmt, last_block, mesh_lines,
-    nset_lines, parse_dat, run_deck, sorted_rows, static_step_lines, step_statistics)
+    CalculixNumericalError, ConfigReader, ccx_version, fmt, last_block, mesh_lines, nset_lines, parse_dat,
+    run_deck, section_and_step_lines, sorted_rows, step_statistics)
 from pipeline.stages.calculix_scene import read_material
 
 SCHEMA = "calculix_plate"
@@ -147,13 +146,7 @@ def build_plate_deck(mesh: PlateMesh, cfg: dict, loaded: int, supported: list) -
     L += mesh_lines(mesh.positions, mesh.element_type, mesh.elements)
     L += nset_lines("SUPPORT", supported)
     L += nset_lines("TOP", mesh.top_nodes())
-    L += material_lines(cfg["material"])
-    L.append("*SOLID SECTION, ELSET=EALL, MATERIAL=MAT")
-    a = cfg["analysis"]
-    L += static_step_lines(a["nlgeom"], a["increments"], a["max_increments"], a["min_increment"],
-                           a["fixed_increments"])
-    if a["nlgeom"]:
-        L += field_controls_lines(a["residual_tolerance"], a["correction_tolerance"])
+    L += section_and_step_lines(cfg["material"], cfg["analysis"])
     L += ["*BOUNDARY", "SUPPORT, 1, 3, 0.0"]
     L.append("*CLOAD")
     L += [f"{loaded}, {d + 1}, {fmt(f)}" for d, f in enumerate(cfg["force"]) if f != 0.0]
@@ -237,8 +230,7 @@ def run_plate(config: dict, out_path) -> dict:
 def run(ctx):
     """Pipeline entry point: ctx.config, ctx.out_path."""
     payload = run_plate(ctx.config, ctx.out_path)
-    if hasattr(ctx, "log"):
-        u = np.asarray(payload["top_centre"]["displacement"]) * 1e3
-        ctx.log(f"calculix {payload['ccx_version']} plate {payload['element_type']} "
-                f"{payload['divisions']} {payload['support']}: top centre u = "
-                f"({u[0]:.4f}, {u[1]:.4f}, {u[2]:.4f}) mm, {payload['wall_time_s']:.2f} s")
+    u = np.asarray(payload["top_centre"]["displacement"]) * 1e3
+    ctx.log(f"calculix {payload['ccx_version']} plate {payload['element_type']} "
+            f"{payload['divisions']} {payload['support']}: top centre u = "
+            f"({u[0]:.4f}, {u[1]:.4f}, {u[2]:.4f}) mm, {payload['wall_time_s']:.2f} s")

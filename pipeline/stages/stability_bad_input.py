@@ -25,22 +25,44 @@ TOOL = "pipeline.stages.stability_bad_input"
 CORPUS = ROOT / "tests" / "bad_input"
 
 
-def run_case(tool, name, case, inputs, folder):
+def load_cases():
+    """(tool, case name, case) of every case of the corpus: tools in name order, cases in the
+    order of their cases.json."""
+    cases = []
+    for manifest in sorted(CORPUS.glob("*/cases.json")):
+        tool = manifest.parent.name
+        for name, case in json.loads(manifest.read_text()).items():
+            cases.append((tool, name, case))
+    return cases
+
+
+def case_command(tool, name, case, substitute, folder):
+    """The arguments of one case's run -> (args, config path or None, output path). The case's
+    config is written into `folder` after `substitute(text)` has replaced the placeholders of
+    the input artifacts (@MESH@, ...) and @DIR@ became the tool's corpus folder."""
     args = []
     if case.get("mode"):
         args.append(case["mode"])
     args += case.get("args", [])
     config = None
     if case["config"] is not None:
-        text = (CORPUS / tool / case["config"]).read_text()
-        for key, path in inputs.items():
-            text = text.replace(key, str(path))
+        text = substitute((CORPUS / tool / case["config"]).read_text())
         text = text.replace("@DIR@", f"tests/bad_input/{tool}")
         config = Path(folder) / f"{tool}.{name}.json"
         config.write_text(text)
         args += ["--config", str(config)]
     out = Path(folder) / f"{tool}.{name}.out.json"
     args += ["--out", str(out)]
+    return args, config, out
+
+
+def run_case(tool, name, case, inputs, folder):
+    def substitute(text):
+        for key, path in inputs.items():
+            text = text.replace(key, str(path))
+        return text
+
+    args, config, out = case_command(tool, name, case, substitute, folder)
     proc = subprocess.run([str(tool_path(tool))] + args, cwd=ROOT, capture_output=True, text=True, timeout=120)
     lines = [l for l in proc.stderr.splitlines() if l.strip()]
     named = all(f.replace("@CONFIG@", str(config)) in (lines[0] if lines else "") for f in case.get("expect", []))
@@ -54,11 +76,7 @@ def run_case(tool, name, case, inputs, folder):
 
 def run(ctx):
     inputs = ctx.config["inputs"]
-    rows = []
     with tempfile.TemporaryDirectory(prefix="bad_input_") as tmp:
-        for manifest in sorted(CORPUS.glob("*/cases.json")):
-            tool = manifest.parent.name
-            for name, case in json.loads(manifest.read_text()).items():
-                rows.append(run_case(tool, name, case, inputs, tmp))
-    tools = sorted({r["tool"] for r in rows})
-    write_artifact(ctx.out_path, SCHEMA, 1, TOOL, ctx.config, {"rows": rows, "tools": tool_hashes(tools)})
+        rows = [run_case(tool, name, case, inputs, tmp) for tool, name, case in load_cases()]
+    # The corpus has one folder per executable in TOOLS: sorted, the order the rows give.
+    write_artifact(ctx.out_path, SCHEMA, 1, TOOL, ctx.config, {"rows": rows, "tools": tool_hashes(sorted(TOOLS))})

@@ -2,8 +2,8 @@
 whatever it is (a stability map needs the failures as data, so a run that ends with exit 3 is a
 result here, not an error of the stage).
 
-A stage that calls executables records their sha256 in its artifact (`tools`), so a report can
-tell when a cached stability artifact was made by an older binary.
+A stage that calls executables names them in TOOLS (their binaries are part of its cache key) and
+records their sha256 in its artifact (`tools`): which binaries made it.
 """
 import json
 import re
@@ -11,6 +11,8 @@ import os
 import subprocess
 import tempfile
 from pathlib import Path
+
+import numpy as np
 
 from pipeline.hashing import file_hash
 from pipeline.paths import BIN, ROOT, rel
@@ -81,3 +83,27 @@ def total_energy(payload):
     """Kinetic + strain energy samples of a dhd_result (J)."""
     e = payload["energies"]
     return [k + s for k, s in zip(e["kinetic"], e["strain"])]
+
+
+# Mesh geometry of the scenes: X is the nodes' array (n × 3, m).
+def extent(X):
+    """The lower and upper corners of the nodes' bounding box and its height (z extent)."""
+    lo, hi = X.min(axis=0), X.max(axis=0)
+    return lo, hi, float(hi[2] - lo[2])
+
+
+def distance_to_top_centre(X):
+    """Each node's distance to the centre of the bounding box's top face."""
+    lo, hi, _ = extent(X)
+    top = np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2]])
+    return np.linalg.norm(X - top, axis=1)
+
+
+def top_centre_node(X):
+    """The node nearest to the centre of the top face (the lowest index on a tie)."""
+    return int(np.argmin(distance_to_top_centre(X)))
+
+
+def nodes_at_or_below(X, z):
+    """Indices of the nodes with a z coordinate ≤ z, in order."""
+    return [int(i) for i in np.flatnonzero(X[:, 2] <= z)]

@@ -130,5 +130,5 @@ def run(ctx):
         rows_damping.append(row)
         ctx.log(f"d0 {d0}: exit {fit.code} {fit.message}")
     payload = {"axis": axis, "noise": rows_noise, "high_orders": rows_orders, "conditioning": rows_cond,
-               "damping": rows_damping, "seed": cfg["seed"], "tools": tool_hashes(["marquardt_fit"])}
+               "damping": rows_damping, "seed": cfg["seed"], "tools": tool_hashes(TOOLS)}
     write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["dataset"]], seed=cfg["seed"])

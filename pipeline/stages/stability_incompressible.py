@@ -41,11 +41,12 @@ import numpy as np
 
 from pipeline.artifacts import write_artifact
 from pipeline.stages import stability_fem as fem
-from pipeline.stages.calculix import solve_tet_mesh
-from pipeline.stages.calculix_ccx import (fmt, last_block, mesh_lines, nset_lines, parse_dat, run_deck, sorted_rows,
-                                          static_step_lines)
+from pipeline.stages.calculix import read_analysis, solve_tet_mesh
+from pipeline.stages.calculix_ccx import (ConfigReader, elset_lines, fmt, last_block, mesh_lines, nset_lines, parse_dat,
+                                          run_deck, section_and_step_lines, sorted_rows)
 from pipeline.stages.calculix_plate import PlateMesh
-from pipeline.stages.stability_common import read_payload, run_tool, tool_hashes
+from pipeline.stages.calculix_scene import read_material
+from pipeline.stages.stability_common import nodes_at_or_below, read_payload, run_tool, tool_hashes
 
 SCHEMA = "stability_incompressible"
 TOOL = "pipeline.stages.stability_incompressible"
@@ -110,10 +111,11 @@ def ccx_hex_deck(box, divisions, element_type, E, nu, pressure, scene, half_widt
     center = (0.5 * box[0], 0.5 * box[1])
     top_layer = [1 + i + nx * (j + ny * (nz - 1)) for j in range(ny) for i in range(nx)
                  if in_patch(((i + 0.5) * dx, (j + 0.5) * dy), center, half_width)[0]]
-    L += ["*ELSET, ELSET=ETOP"] + [", ".join(str(e) for e in top_layer[k:k + 16]) for k in range(0, len(top_layer), 16)]
+    L += elset_lines("ETOP", top_layer)
     L += nset_lines("FIXED", fixed)
-    L += ["*MATERIAL, NAME=MAT", "*ELASTIC", f"{fmt(E)}, {fmt(nu)}", "*SOLID SECTION, ELSET=EALL, MATERIAL=MAT"]
-    L += static_step_lines(False, 1, 1, 1.0, False)
+    # The linear material and a linear step, as the C3D4 solve of the tets gets them.
+    material = read_material(ConfigReader({"model": "linear", "E": E, "nu": nu}, "/material"))
+    L += section_and_step_lines(material, read_analysis(ConfigReader({}, "/analysis"), "linear"))
     L += ["*BOUNDARY", "FIXED, 1, 3, 0.0", "*DLOAD", f"ETOP, P2, {fmt(pressure)}",
           "*NODE PRINT, NSET=NALL, FREQUENCY=100000000", "U", "*END STEP"]
     return "\n".join(L) + "\n", mesh
@@ -151,7 +153,7 @@ def run(ctx):
         fixed = [int(i) for i in np.flatnonzero(X[:, 0] <= lo[0] + tol)]
         tip = [int(i) for i in np.flatnonzero(X[:, 0] >= hi[0] - tol)]
     else:
-        fixed = [int(i) for i in np.flatnonzero(X[:, 2] <= lo[2] + tol)]
+        fixed = nodes_at_or_below(X, lo[2] + tol)
         top = X[:, 2] >= hi[2] - tol
         tip = [int(i) for i in np.flatnonzero(top & in_patch(X[:, :2], center, half_width))]
     # Loads on the clamped nodes would go straight into the reaction: left out.
@@ -204,5 +206,5 @@ def run(ctx):
     payload = {"rows": rows, "scene": scene, "patch_half_width": half_width, "box": box, "cells": cells, "hex_divisions": divisions, "hex_elements": n_hex,
                "hex_element_type": cfg["ccx"]["element_type"], "tets": len(T), "nodes": len(X),
                "tip_nodes": len(tip), "fixed_nodes": len(fixed), "pressure": cfg["pressure"],
-               "E": E, "density": rho, "elements": cfg["elements"], "tools": tool_hashes(["dhd_sim"])}
+               "E": E, "density": rho, "elements": cfg["elements"], "tools": tool_hashes(TOOLS)}
     write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["mesh"]])

@@ -21,7 +21,8 @@ import re
 import numpy as np
 
 from pipeline.artifacts import write_artifact
-from pipeline.stages.stability_common import read_payload, run_tool, tool_hashes
+from pipeline.stages.stability_common import (distance_to_top_centre, extent, nodes_at_or_below, read_payload,
+                                              run_tool, tool_hashes, top_centre_node)
 
 SCHEMA = "stability_inversion"
 TOOL = "pipeline.stages.stability_inversion"
@@ -36,12 +37,9 @@ def smooth(s):
 
 
 def probe_nodes(X, radius):
-    lo, hi = X.min(axis=0), X.max(axis=0)
-    top = np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2]])
-    d = np.linalg.norm(X - top, axis=1)
     if radius <= 0:
-        return [int(np.argmin(d))]
-    return [int(i) for i in np.flatnonzero(d <= radius)]
+        return [top_centre_node(X)]
+    return [int(i) for i in np.flatnonzero(distance_to_top_centre(X) <= radius)]
 
 
 def parse_failure(message):
@@ -66,8 +64,8 @@ def run(ctx):
     cfg = ctx.config
     mesh = read_payload(cfg["mesh"])
     X = np.array(mesh["nodes"])
-    height = float(X[:, 2].max() - X[:, 2].min())
-    bottom = [int(i) for i in np.flatnonzero(X[:, 2] <= X[:, 2].min() + 1e-9 * height)]
+    lo, _, height = extent(X)
+    bottom = nodes_at_or_below(X, lo[2] + 1e-9 * height)
     rows, static_rows = [], []
     for probe in cfg["probes"]:
         nodes = probe_nodes(X, probe["radius"])
@@ -115,6 +113,6 @@ def run(ctx):
                 if not s.ok:
                     break  # deeper pushes fail as well
     payload = {"explicit": rows, "static": static_rows, "height": height, "material": cfg["material"],
-               "damping": cfg["damping"], "steps": cfg["steps"], "tools": tool_hashes(["dhd_sim"]),
+               "damping": cfg["damping"], "steps": cfg["steps"], "tools": tool_hashes(TOOLS),
                "inversion_safe_variant": None}
     write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["mesh"]])

@@ -18,7 +18,8 @@ import numpy as np
 
 from pipeline.artifacts import write_artifact
 from pipeline.stages.calculix import solve_tet_mesh
-from pipeline.stages.stability_common import read_payload, run_tool, tool_hashes, total_energy
+from pipeline.stages.stability_common import (extent, read_payload, run_tool, tool_hashes, top_centre_node,
+                                              total_energy)
 
 SCHEMA = "stability_longrun"
 TOOL = "pipeline.stages.stability_longrun"
@@ -28,10 +29,8 @@ def run(ctx):
     cfg = ctx.config
     mesh = read_payload(cfg["mesh"])
     X = np.array(mesh["nodes"])
-    lo, hi = X.min(axis=0), X.max(axis=0)
-    height = float(hi[2] - lo[2])
-    top = np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2]])
-    pushed = int(np.argmin(np.linalg.norm(X - top, axis=1)))
+    _, _, height = extent(X)
+    pushed = top_centre_node(X)
     boundary = {"fixed": ["bottom"], "prescribed": [{"nodes": [pushed], "displacement": [0, 0, -cfg["push"] * height]}]}
     rows = []
     for kind, model in cfg["kinds"].items():
@@ -77,5 +76,5 @@ def run(ctx):
             ctx.log(f"{kind} alpha={alpha}: exit {out.code} {row.get('max_drift', row.get('vs_calculix_max'))}")
     payload = {"rows": rows, "mesh": {"nodes": len(X), "tets": len(mesh["tets"])}, "push": cfg["push"],
                "height": height, "precision": "double (dhd_sim has no single-precision path)",
-               "tools": tool_hashes(["dhd_sim"])}
+               "tools": tool_hashes(TOOLS)}
     write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["mesh"]])

@@ -32,7 +32,7 @@ import numpy as np
 
 from pipeline.artifacts import write_artifact
 from pipeline.stages import stability_fem as fem
-from pipeline.stages.stability_common import read_payload, run_tool, tool_hashes
+from pipeline.stages.stability_common import extent, nodes_at_or_below, read_payload, run_tool, tool_hashes
 
 SCHEMA = "stability_quality"
 TOOL = "pipeline.stages.stability_quality"
@@ -104,8 +104,8 @@ def measure(name, payload, path, cfg, kind_of_case, parameter, height=None, refe
            "min_altitude": float(geo["altitude"].min())}
     bottom = payload["node_sets"].get("bottom")
     if bottom is None:
-        z = X[:, 2]
-        bottom = [int(i) for i in np.flatnonzero(z <= z.min() + 0.15 * (z.max() - z.min()))]
+        lo, _, mesh_height = extent(X)
+        bottom = nodes_at_or_below(X, lo[2] + 0.15 * mesh_height)
     boundary = {"fixed": [{"nodes": bottom}]}
     run = run_tool("dhd_sim", {"mesh": path, "material": mat, "boundary": boundary,
                                "solver": {"kind": "explicit", "steps": cfg["explicit_steps"]}})
@@ -128,8 +128,7 @@ def measure(name, payload, path, cfg, kind_of_case, parameter, height=None, refe
 def run(ctx):
     cfg = ctx.config
     base = read_payload(cfg["base"])
-    X = np.array(base["nodes"])
-    height = float(X[:, 2].max() - X[:, 2].min())
+    _, _, height = extent(np.array(base["nodes"]))
     refs = {}
     for key in ("base", "fine"):
         force, out = shear_reaction(cfg[key], cfg["material"], height, cfg["shear"])
@@ -150,6 +149,6 @@ def run(ctx):
     for name, path in cfg.get("meshes", {}).items():
         rows.append(measure(name, read_payload(path), path, cfg, "as read", None))
     payload = {"rows": rows, "references": refs, "height": height, "shear": cfg["shear"],
-               "material": cfg["material"], "seed": cfg["seed"], "tools": tool_hashes(["dhd_sim"])}
+               "material": cfg["material"], "seed": cfg["seed"], "tools": tool_hashes(TOOLS)}
     write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload,
                    inputs=[cfg["base"], cfg["fine"]] + list(cfg.get("meshes", {}).values()), seed=cfg["seed"])

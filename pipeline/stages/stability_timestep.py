@@ -34,7 +34,8 @@ import numpy as np
 
 from pipeline.artifacts import write_artifact
 from pipeline.stages import stability_fem as fem
-from pipeline.stages.stability_common import read_payload, run_tool, tool_hashes, total_energy
+from pipeline.stages.stability_common import (extent, nodes_at_or_below, read_payload, run_tool, tool_hashes,
+                                              top_centre_node, total_energy)
 
 SCHEMA = "stability_timestep"
 TOOL = "pipeline.stages.stability_timestep"
@@ -42,12 +43,9 @@ TOOL = "pipeline.stages.stability_timestep"
 
 def scene(mesh, fixed_fraction, push):
     X = np.array(mesh["nodes"])
-    lo, hi = X.min(axis=0), X.max(axis=0)
-    height = hi[2] - lo[2]
-    zcut = lo[2] + max(fixed_fraction * height, 1e-9 * height)
-    top = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2]]
-    fixed = [int(i) for i in np.flatnonzero(X[:, 2] <= zcut)]
-    pushed = int(np.argmin(np.linalg.norm(X - np.array(top), axis=1)))
+    lo, _, height = extent(X)
+    fixed = nodes_at_or_below(X, lo[2] + max(fixed_fraction * height, 1e-9 * height))
+    pushed = top_centre_node(X)
     boundary = {"fixed": [{"nodes": fixed}],
                 "prescribed": [{"nodes": [pushed], "displacement": [0, 0, -push * height]}]}
     return boundary, fixed, pushed, height
@@ -58,11 +56,10 @@ def compression_scene(mesh, fixed_fraction, compression, ramp_time):
     layer) moved down by `compression` × height with a smooth ramp: a large, nearly homogeneous
     deformation under which a TLED element's wave speed changes."""
     X = np.array(mesh["nodes"])
-    lo, hi = X.min(axis=0), X.max(axis=0)
-    height = hi[2] - lo[2]
+    lo, hi, height = extent(X)
     zfix = lo[2] + max(fixed_fraction * height, 1e-9 * height)
     ztop = hi[2] - max(fixed_fraction * height, 1e-9 * height)
-    return {"fixed": [{"nodes": [int(i) for i in np.flatnonzero(X[:, 2] <= zfix)]}],
+    return {"fixed": [{"nodes": nodes_at_or_below(X, zfix)}],
             "prescribed": [{"nodes": [int(i) for i in np.flatnonzero(X[:, 2] >= ztop)],
                             "displacement": [0, 0, -compression * height], "ramp_time": ramp_time, "ramp": "smooth"}]}
 
@@ -103,7 +100,7 @@ def run(ctx):
     E, nu, rho = material["E"], material["nu"], material["density"]
     c = float(fem.wave_speed(E, nu, rho))
     result = {"meshes": {}, "wave_speed": c, "material": material, "steps": cfg["steps"],
-              "push": cfg["push"], "tools": tool_hashes(["dhd_sim"])}
+              "push": cfg["push"], "tools": tool_hashes(TOOLS)}
     inputs = []
     for name, path in cfg["meshes"].items():
         inputs.append(path)

@@ -14,20 +14,9 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT, run_tool, write_json
+from pipeline.stages.stability_bad_input import CORPUS, case_command, load_cases
 
-CORPUS = ROOT / "tests" / "bad_input"
 APPS = ROOT / "cpp" / "apps"
-
-
-def load_cases():
-    cases = []
-    for manifest in sorted(CORPUS.glob("*/cases.json")):
-        tool = manifest.parent.name
-        for name, case in json.loads(manifest.read_text()).items():
-            cases.append((tool, name, case))
-    return cases
-
-
 CASES = load_cases()
 
 
@@ -73,14 +62,14 @@ class Inputs:
                                for c in "xyz"}}}},
                           mode="fit")
 
-    def substitute(self, text: str, tool: str) -> str:
+    def substitute(self, text: str) -> str:
         lazy = {"@MESH@": self.mesh, "@DATASET_X@": lambda: self.dataset("x"),
                 "@DATASET_Y@": lambda: self.dataset("y"), "@DATASET_Z@": lambda: self.dataset("z"),
                 "@FIT@": self.fit}
         for key, make in lazy.items():
             if key in text:
                 text = text.replace(key, str(make()))
-        return text.replace("@DIR@", f"tests/bad_input/{tool}")
+        return text
 
 
 @pytest.fixture(scope="session")
@@ -89,18 +78,7 @@ def inputs(tmp_path_factory):
 
 
 def run_case(tool, name, case, inputs, tmp_path):
-    args = []
-    if case.get("mode"):
-        args.append(case["mode"])
-    args += case.get("args", [])
-    config = None
-    if case["config"] is not None:
-        text = (CORPUS / tool / case["config"]).read_text()
-        config = tmp_path / f"{name}.json"
-        config.write_text(inputs.substitute(text, tool))
-        args += ["--config", config]
-    out = tmp_path / "out.json"
-    args += ["--out", out]
+    args, config, out = case_command(tool, name, case, inputs.substitute, tmp_path)
     return run_tool(tool, *args), config, out
 
 
