@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
       "  Full reference: cpp/apps/async_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
     const io::JsonReader& cfg = ctx.config();
-    multirate::RunConfig config = multirate::read_run_config(cfg);
+    const multirate::RunConfig config = multirate::read_run_config(cfg);
     multirate::ModelSummary model;
     const multirate::ReducedSystem system = multirate::build_system(config, model);
     const multirate::ComparisonResult result = multirate::run_comparison(system, config.comparison);

@@ -63,14 +63,9 @@ void run_stability(app::AppContext& ctx) {
   const RpimSettings settings = read_settings(cfg);
   const io::JsonReader sweep = cfg.at("stability");
   cfg.reject_unknown();
-  const std::vector<std::pair<std::string, StabilityParameter>> parameters = {
-      {"q", StabilityParameter::q},
-      {"alpha_c", StabilityParameter::alpha_c},
-      {"d_c_spacing_factor", StabilityParameter::d_c_spacing_factor},
-      {"support_spacing_factor", StabilityParameter::support_spacing_factor},
-      {"nearest_count", StabilityParameter::nearest_count}};
   std::vector<std::pair<StabilityParameter, double>> runs;
-  for (const auto& [key, parameter] : parameters) {
+  for (const StabilityParameter parameter : kStabilityParameters) {
+    const std::string key = stability_parameter_name(parameter);
     if (!sweep.has(key)) continue;
     for (double v : sweep.get_doubles(key)) {
       sweep.require(v > 0, key, "positive parameter values");

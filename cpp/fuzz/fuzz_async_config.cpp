@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!doc.is_object()) return 0;
   try {
     const softsim::io::JsonReader cfg(doc, "fuzz.json");
-    softsim::multirate::RunConfig config = softsim::multirate::read_run_config(cfg);
+    const softsim::multirate::RunConfig config = softsim::multirate::read_run_config(cfg);
     if (config.bar.nodes > 200) return 0;
     softsim::multirate::ModelSummary summary;
     softsim::multirate::build_system(config, summary);

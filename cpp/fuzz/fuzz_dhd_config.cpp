@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fuzz_json.hpp"
 #include "softsim/hybrid/dhd_run.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/json_reader.hpp"
@@ -34,11 +35,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // that never end (/dev/zero) — a config naming one is not a parser bug.
   if (text.find("/dev") != std::string::npos || text.find("/proc") != std::string::npos) return 0;
   nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {
-    return 0;
-  }
+  if (!parse_fuzz_json(data, size, doc)) return 0;
   if (!doc.is_object()) return 0;
   try {
     const softsim::io::JsonReader cfg(doc, "fuzz.json");

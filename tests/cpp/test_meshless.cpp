@@ -181,6 +181,35 @@ TEST(RpimShape, SingularMomentMatrixIsANumericalErrorNotGarbage) {
 
 // ---------------------------------------------------------------- stiffness (002 eqs. 7, 19-22)
 
+namespace {
+
+// The textbook Voigt form, the independent reference of the closed-form block. Strain order
+// ε = [εxx, εyy, εzz, γyz, γxz, γxy] (rows of L in 002 eq. 4).
+// D of 002 eq. 7: D11 = E(1-ν)/((1+ν)(1-2ν)), D12 = Eν/((1+ν)(1-2ν)), shear (D11 - D12)/2.
+Eigen::Matrix<double, 6, 6> elasticity_matrix(double e, double nu) {
+  const double f = e / ((1 + nu) * (1 - 2 * nu));
+  const double d11 = f * (1 - nu), d12 = f * nu;  // 002 eq. 7
+  Eigen::Matrix<double, 6, 6> d = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) d(i, j) = i == j ? d11 : d12;
+  for (int i = 3; i < 6; ++i) d(i, i) = 0.5 * (d11 - d12);
+  return d;
+}
+
+// B_i = L Φ_i (002 eqs. 18–19): the 6 × 3 strain matrix of one node from its gradient.
+Eigen::Matrix<double, 6, 3> strain_matrix(const Eigen::Vector3d& g) {
+  Eigen::Matrix<double, 6, 3> b = Eigen::Matrix<double, 6, 3>::Zero();
+  b(0, 0) = g.x();                    // εxx = ∂u/∂x
+  b(1, 1) = g.y();                    // εyy = ∂v/∂y
+  b(2, 2) = g.z();                    // εzz = ∂w/∂z
+  b(3, 1) = g.z(); b(3, 2) = g.y();   // γyz = ∂v/∂z + ∂w/∂y
+  b(4, 0) = g.z(); b(4, 2) = g.x();   // γxz = ∂u/∂z + ∂w/∂x
+  b(5, 0) = g.y(); b(5, 1) = g.x();   // γxy = ∂u/∂y + ∂v/∂x
+  return b;
+}
+
+}  // namespace
+
 TEST(Elasticity, ClosedFormBlockEqualsBTransposeDB) {
   const Eigen::Vector3d gi(0.3, -1.2, 0.7), gj(-0.4, 0.25, 1.1);
   const double e = 0.32e6, nu = 0.49, w = 0.37;

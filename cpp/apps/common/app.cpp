@@ -80,12 +80,12 @@ int run_app(int argc, char** argv, const AppInfo& info,
     }
     body(ctx);
     return 0;
-  } catch (const ConfigInputError& e) {
-    std::cerr << info.name << ": error: " << ctx.config_path << ": " << e.pointer << ": " << e.what() << "\n";
-    if (!ctx.out_path.empty()) std::remove(ctx.out_path.c_str());
-    return 2;
   } catch (const InputError& e) {
-    std::cerr << info.name << ": error: " << e.what() << "\n";
+    std::cerr << info.name << ": error: ";
+    // A config member found at fault after reading knows its JSON pointer but not the file.
+    if (const auto* at = dynamic_cast<const ConfigInputError*>(&e))
+      std::cerr << ctx.config_path << ": " << at->pointer << ": ";
+    std::cerr << e.what() << "\n";
     if (!ctx.out_path.empty()) std::remove(ctx.out_path.c_str());
     return 2;
   } catch (const NumericalError& e) {

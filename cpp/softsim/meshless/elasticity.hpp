@@ -1,7 +1,6 @@
 #pragma once
-// Isotropic linear elasticity in Voigt form, as used by the global weak form (002 eqs. 4–7).
-// Strain order ε = [εxx, εyy, εzz, γyz, γxz, γxy] (rows of L in 002 eq. 4).
-#include <Eigen/Core>
+// Isotropic linear elasticity as used by the global weak form (002 eqs. 4–7): the Lamé
+// parameters and the stiffness block B_iᵀ D B_j of two nodes in closed form.
 
 namespace softsim::meshless {
 
@@ -11,12 +10,6 @@ struct LameParameters {
 };
 // Throws std::invalid_argument outside E > 0, -1 < ν < 0.5.
 LameParameters lame_from_young(double youngs_modulus, double poisson_ratio);
-
-// D of 002 eq. 7: D11 = E(1-ν)/((1+ν)(1-2ν)), D12 = Eν/((1+ν)(1-2ν)), shear (D11 - D12)/2.
-Eigen::Matrix<double, 6, 6> elasticity_matrix(double youngs_modulus, double poisson_ratio);
-
-// B_i = L Φ_i (002 eqs. 18–19): the 6 × 3 strain matrix of one node from its gradient.
-Eigen::Matrix<double, 6, 3> strain_matrix(const Eigen::Vector3d& grad_phi);
 
 // The 3 × 3 block w B_iᵀ D B_j of 002 eq. 19 in closed form for isotropic D:
 //   K_ij[a][b] = w (λ ∂_a φ_i ∂_b φ_j + μ ∂_b φ_i ∂_a φ_j + μ δ_ab ∇φ_i·∇φ_j).

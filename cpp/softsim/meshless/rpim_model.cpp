@@ -73,16 +73,4 @@ Eigen::VectorXd RpimModel::body_force(const BodyForceField& b) const {
   return assemble_body_force(shapes_, num_nodes(), b);
 }
 
-Eigen::Vector3d RpimModel::interpolate(const Eigen::VectorXd& u, const Eigen::Vector3d& x) const {
-  const std::vector<int> s = support_nodes(problem_.nodes, x, support_);
-  Eigen::MatrixX3d coords(s.size(), 3);
-  for (std::size_t a = 0; a < s.size(); ++a) coords.row(a) = problem_.nodes[s[a]].transpose();
-  RpimShapeEvaluator evaluator(rbf_);
-  ShapeValues v;
-  evaluator.evaluate(x, coords, false, v);
-  Eigen::Vector3d out = Eigen::Vector3d::Zero();
-  for (std::size_t a = 0; a < s.size(); ++a) out += v.phi[a] * u.segment<3>(3 * s[a]);  // 002 eq. 18
-  return out;
-}
-
 }  // namespace softsim::meshless

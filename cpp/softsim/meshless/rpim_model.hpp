@@ -85,8 +85,6 @@ class RpimModel {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& nodal_forces) const;
   // Consistent nodal forces of a body-force field (002 eq. 24).
   Eigen::VectorXd body_force(const BodyForceField& b) const;
-  // u^h(x) = Σ φ_I(x) u_I at an arbitrary point (002 eq. 18), with the model's support rule.
-  Eigen::Vector3d interpolate(const Eigen::VectorXd& u, const Eigen::Vector3d& x) const;
 
  private:
   MeshlessProblem problem_;

@@ -53,16 +53,6 @@ void RpimShapeEvaluator::build_moment_matrix(const Eigen::Ref<const Eigen::Matri
   }
 }
 
-Eigen::MatrixXd RpimShapeEvaluator::moment_matrix(
-    const Eigen::Vector3d& x, const Eigen::Ref<const Eigen::MatrixX3d>& support) const {
-  Eigen::MatrixX3d local;
-  const double s = local_frame(x, support, local);
-  const double c = params_.shape_length() / s;
-  Eigen::MatrixXd g;
-  build_moment_matrix(local, c * c, g);
-  return g;
-}
-
 void RpimShapeEvaluator::evaluate(const Eigen::Vector3d& x,
                                   const Eigen::Ref<const Eigen::MatrixX3d>& support,
                                   bool with_gradient, ShapeValues& out) {
@@ -79,12 +69,12 @@ void RpimShapeEvaluator::evaluate(const Eigen::Vector3d& x,
   // Because G is symmetric, Φᵀ = G⁻¹ [R(x); p(x)] (002 eq. 17 transposed).
   const int cols = with_gradient ? 4 : 1;
   rhs_.setZero(n + m, cols);
-  const Eigen::ArrayXd log_r2c2 = (local_.rowwise().squaredNorm().array() + c2).log();
-  rhs_.col(0).head(n) = (q * log_r2c2).exp().matrix();
+  log_r2c2_ = (local_.rowwise().squaredNorm().array() + c2).log();
+  rhs_.col(0).head(n) = (q * log_r2c2_).exp().matrix();
   if (with_gradient) {
     // ∂/∂x_k (|x - x_i|² + c²)^q = 2q (r² + c²)^(q-1) (x_k - x_ik), with x at the origin.
-    const Eigen::ArrayXd f = -2.0 * q * ((q - 1.0) * log_r2c2).exp();
-    for (int k = 0; k < 3; ++k) rhs_.col(1 + k).head(n) = (f * local_.col(k).array()).matrix();
+    gradient_factor_ = -2.0 * q * ((q - 1.0) * log_r2c2_).exp();
+    for (int k = 0; k < 3; ++k) rhs_.col(1 + k).head(n) = (gradient_factor_ * local_.col(k).array()).matrix();
   }
   if (m == 4) {
     rhs_(n, 0) = 1.0;  // p(0) = [1, 0, 0, 0]
@@ -104,12 +94,12 @@ void RpimShapeEvaluator::evaluate(const Eigen::Vector3d& x,
        << ", alpha_c = " << params_.alpha_c << ", d_c = " << params_.d_c << " m)";
     throw NumericalError(os.str());
   }
-  rhs_ = lu_.solve(rhs_).eval();
-  if (!rhs_.allFinite())
+  solution_ = lu_.solve(rhs_);
+  if (!solution_.allFinite())
     throw NumericalError("RPIM shape functions at " + point_text(x) + ": non-finite shape function values");
 
   out.moment_condition = condition;
-  out.phi = rhs_.col(0).head(n);
+  out.phi = solution_.col(0).head(n);
   const double partition_error = std::abs(out.phi.sum() - 1.0);
   if (!(partition_error <= params_.max_partition_error)) {
     std::ostringstream os;
@@ -121,7 +111,7 @@ void RpimShapeEvaluator::evaluate(const Eigen::Vector3d& x,
        << " m): enlarge the support or add the linear polynomial";
     throw NumericalError(os.str());
   }
-  if (with_gradient) out.dphi = rhs_.block(0, 1, n, 3) / s;
+  if (with_gradient) out.dphi = solution_.block(0, 1, n, 3) / s;
   else out.dphi.resize(0, 3);
 }
 

@@ -53,21 +53,19 @@ class RpimShapeEvaluator {
   void evaluate(const Eigen::Vector3d& x, const Eigen::Ref<const Eigen::MatrixX3d>& support,
                 bool with_gradient, ShapeValues& out);
 
-  // The moment matrix G of a support (in the locally scaled coordinates used for the solve;
-  // its condition number is scale-independent without polynomials and well scaled with them).
-  Eigen::MatrixXd moment_matrix(const Eigen::Vector3d& x,
-                                const Eigen::Ref<const Eigen::MatrixX3d>& support) const;
-
-  const RbfParams& params() const { return params_; }
-
  private:
   void build_moment_matrix(const Eigen::Ref<const Eigen::MatrixX3d>& local, double c2,
                            Eigen::MatrixXd& g) const;
 
   RbfParams params_;
+  // Work arrays kept between calls: they are reallocated only when the support size changes
+  // from one point to the next.
   Eigen::MatrixX3d local_;
   Eigen::MatrixXd g_;
-  Eigen::MatrixXd rhs_;
+  Eigen::ArrayXd log_r2c2_;         // log(r_i² + c²) of every support node
+  Eigen::ArrayXd gradient_factor_;  // -2q (r_i² + c²)^(q-1)
+  Eigen::MatrixXd rhs_;             // [R(x); p(x)] and its derivatives
+  Eigen::MatrixXd solution_;        // G⁻¹ rhs_: Φᵀ and its derivatives
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
 };
 

@@ -37,14 +37,6 @@ void query(const NodeSearch& search, const SupportRule& support, const Eigen::Ve
 
 }  // namespace
 
-std::vector<int> support_nodes(const std::vector<Eigen::Vector3d>& nodes, const Eigen::Vector3d& x,
-                               const SupportRule& support) {
-  const NodeSearch search(nodes, bucket_size(support, nodes));
-  std::vector<int> out;
-  query(search, support, x, out);
-  return out;
-}
-
 ShapeTable build_shape_table(const std::vector<Eigen::Vector3d>& nodes, const QuadraturePoints& quadrature,
                              const SupportRule& support, const RbfParams& rbf) {
   if (support.kind == SupportRule::Kind::nearest &&

@@ -53,8 +53,4 @@ ShapeTableStats shape_table_stats(const ShapeTable& table, const std::vector<Eig
 ShapeTable build_shape_table(const std::vector<Eigen::Vector3d>& nodes, const QuadraturePoints& quadrature,
                              const SupportRule& support, const RbfParams& rbf);
 
-// Support node indices of one point (the same rule as the table), for diagnostics and tests.
-std::vector<int> support_nodes(const std::vector<Eigen::Vector3d>& nodes, const Eigen::Vector3d& x,
-                               const SupportRule& support);
-
 }  // namespace softsim::meshless

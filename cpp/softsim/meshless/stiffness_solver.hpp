@@ -28,8 +28,6 @@ class StiffnessSolver {
   void factorize(const SparseMatrix& k, double reference_scale = 0.0);
   // Solves K U = F for every column of F.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& f) const;
-  Eigen::Index size() const { return n_; }
-  SolverKind kind() const { return kind_; }
   // Smallest pivot (D of LDLᵀ or squared diagonal of L) / reference_scale.
   double pivot_ratio() const { return pivot_ratio_; }
   static constexpr double kMinPivotRatio = 1e-11;

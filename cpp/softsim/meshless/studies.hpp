@@ -13,6 +13,10 @@
 namespace softsim::meshless {
 
 enum class StabilityParameter { q, alpha_c, d_c_spacing_factor, support_spacing_factor, nearest_count };
+inline constexpr StabilityParameter kStabilityParameters[] = {
+    StabilityParameter::q, StabilityParameter::alpha_c, StabilityParameter::d_c_spacing_factor,
+    StabilityParameter::support_spacing_factor, StabilityParameter::nearest_count};
+// The parameter's name, also its key in the stability config.
 std::string stability_parameter_name(StabilityParameter p);
 
 struct StabilityPoint {

@@ -90,22 +90,21 @@ AsyncSolver::AsyncSolver(const ReducedSystem& system, int contact_free_node, con
           make_block(0, n, spec.primary_solver, 1, "primary region (" + std::to_string(n) + " nodes)",
                      "/async/primary_solver"));
   }
-  region_of_node_.assign(nodes_, -1);
+  region_of_node_.assign(nodes_, 0);
   for (std::size_t r = merged; r < spec.secondary.size(); ++r) {
     const SecondaryRegionSpec& s = spec.secondary[r];
+    const int begin_node = bounds[r], end_node = bounds[r + 1];
+    const bool follows_primary = r == merged;  // begins where the primary region ends (adapts with it)
     Secondary sec;
     sec.every = s.every;
-    sec.begin_node = bounds[r];
-    sec.end_node = bounds[r + 1];
-    sec.follows_primary = (r == merged);
     const std::string name = "secondary region " + std::to_string(r + 1);
     const std::string pointer = "/async/secondary/" + std::to_string(r) + "/solver";
-    if (sec.follows_primary && adaptive_) {
-      for (int n = p.min_nodes; n <= p.max_nodes; ++n) sec.blocks.push_back(make_block(n, sec.end_node, s.solver, s.every, name, pointer));
+    if (follows_primary && adaptive_) {
+      for (int n = p.min_nodes; n <= p.max_nodes; ++n) sec.blocks.push_back(make_block(n, end_node, s.solver, s.every, name, pointer));
     } else {
-      sec.blocks.push_back(make_block(sec.begin_node, sec.end_node, s.solver, s.every, name, pointer));
+      sec.blocks.push_back(make_block(begin_node, end_node, s.solver, s.every, name, pointer));
     }
-    for (int node = sec.begin_node; node < sec.end_node; ++node) region_of_node_[node] = static_cast<int>(secondary_.size());
+    for (int node = begin_node; node < end_node; ++node) region_of_node_[node] = static_cast<int>(secondary_.size());
     secondary_.push_back(std::move(sec));
   }
   if (secondary_.empty() && primary_min_ != nodes_)
@@ -127,15 +126,10 @@ void AsyncSolver::reset() {
   for (Secondary& s : secondary_) s.last_update = 0;
 }
 
-int AsyncSolver::secondary_of(int node) const {
-  const int r = region_of_node_[node];
-  return r >= 0 ? r : 0;  // inside the adaptive range but outside the primary: the first secondary
-}
-
 double AsyncSolver::published(int dof, long frame) const {
   const int node = dof / dpn_;
   if (node < primary_end_ || !interpolate_) return u_[dof];
-  const Secondary& s = secondary_[secondary_of(node)];
+  const Secondary& s = secondary_[region_of_node_[node]];
   // 001 Fig. 4: from the previous solution to the last one over the `every` frames after it.
   const double t = std::min(1.0, static_cast<double>(frame - s.last_update) / s.every);
   return u_prev_[dof] + t * (u_[dof] - u_prev_[dof]);

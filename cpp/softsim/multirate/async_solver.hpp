@@ -72,9 +72,6 @@ class AsyncSolver : public FrameStepper {
   // Displacement of every free node as its neighbours see it now, in the caller's free-node
   // numbering (size: free DOFs).
   void published_displacement(Eigen::VectorXd& out) const;
-  // Free nodes (caller's numbering) in contact-distance order: region r spans a range of it.
-  const std::vector<int>& node_order() const { return order_; }
-  int secondary_regions() const { return static_cast<int>(secondary_.size()); }
   // Number of (re)factorised blocks held for the adaptable region sizes.
   int blocks() const { return static_cast<int>(owned_.size()); }
   // Smallest explicit stability limit over the blocks (infinity when none is explicit).
@@ -83,20 +80,16 @@ class AsyncSolver : public FrameStepper {
  private:
   struct Secondary {
     int every = 1;
-    int begin_node = 0;   // fixed begin (for the first secondary of an adaptive layout: at max primary size)
-    int end_node = 0;
-    bool follows_primary = false;                 // begins where the primary region ends (adapts with it)
-    std::vector<BlockIntegrator*> blocks;         // by primary size - min size (one when fixed)
-    long last_update = 0;                         // frame index of the last solve
+    // One block, or (the first secondary region of an adaptive layout, which begins where the
+    // primary region ends) one per primary size, by primary size - min size.
+    std::vector<BlockIntegrator*> blocks;
+    long last_update = 0;  // frame index of the last solve
   };
 
   BlockIntegrator& primary_block() { return *primary_blocks_[primary_end_ - primary_min_]; }
   BlockIntegrator& secondary_block(Secondary& s) {
-    return *s.blocks[s.follows_primary && s.blocks.size() > 1 ? primary_end_ - primary_min_ : 0];
+    return *s.blocks[s.blocks.size() > 1 ? primary_end_ - primary_min_ : 0];
   }
-  int secondary_begin(const Secondary& s) const { return s.follows_primary ? primary_end_ : s.begin_node; }
-  // Which secondary holds node `node` (not in the primary region).
-  int secondary_of(int node) const;
   double published(int dof, long frame) const;
   void refresh_view(const BlockIntegrator& block, long frame);
   void resize_primary(int target, long frame);
@@ -115,7 +108,10 @@ class AsyncSolver : public FrameStepper {
   std::vector<std::unique_ptr<BlockIntegrator>> owned_;
   std::vector<BlockIntegrator*> primary_blocks_;  // by primary size - min size
   std::vector<Secondary> secondary_;
-  std::vector<int> region_of_node_;  // secondary index for nodes at or beyond the maximal primary size
+  // Secondary region of each node outside the primary region: a node of the adaptive range
+  // belongs to the first one whenever the primary region does not hold it (the entries of
+  // primary nodes are never read).
+  std::vector<int> region_of_node_;
   SlidingMax held_size_;
   Eigen::VectorXd u_, v_, u_prev_, view_, force_, previous_force_;
   long frame_ = 0;

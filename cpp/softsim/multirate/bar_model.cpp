@@ -13,7 +13,7 @@ LinearModel make_bar(const BarSpec& spec) {
   LinearModel model;
   model.dofs_per_node = 1;
   const int elements = spec.nodes - 1;
-  const double h = spec.length / elements;
+  const double h = bar_element_length(spec);
   const double k = spec.youngs_modulus * spec.area / h;        // axial element stiffness
   const double element_mass = spec.density * spec.area * h;    // lumped: half to each end
   model.positions.resize(spec.nodes);

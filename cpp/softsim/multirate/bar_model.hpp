@@ -17,6 +17,9 @@ struct BarSpec {
 // Throws InputError for fewer than 2 nodes or a non-positive property.
 LinearModel make_bar(const BarSpec& spec);
 
+// The element length h = L / (N - 1).
+inline double bar_element_length(const BarSpec& spec) { return spec.length / (spec.nodes - 1); }
+
 // The contact node of the bar: its free end.
 inline int bar_contact_node(const BarSpec& spec) { return spec.nodes - 1; }
 

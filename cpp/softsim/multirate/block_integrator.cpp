@@ -21,7 +21,7 @@ BlockIntegrator::BlockIntegrator(const ReducedSystem& system, int dof_begin, int
   rows_ = system.stiffness.middleRows(begin_, n);
   rows_.makeCompressed();
   mass_ = system.mass.segment(begin_, n);
-  damping_ = system.damping.segment(begin_, n);
+  const Eigen::VectorXd damping = system.damping.segment(begin_, n);
   rhs_.setZero(n);
 
   std::set<int> outside;
@@ -43,8 +43,8 @@ BlockIntegrator::BlockIntegrator(const ReducedSystem& system, int dof_begin, int
     // 001 eq. 6:                 (M + h C)   w+ = M w- + h r
     const double c_new = solver.explicit_variant == ExplicitVariant::kCentral ? 0.5 * h : h;
     const double c_old = solver.explicit_variant == ExplicitVariant::kCentral ? -0.5 * h : 0.0;
-    explicit_inverse_ = (mass_ + c_new * damping_).cwiseInverse();
-    explicit_keep_ = mass_ + c_old * damping_;
+    explicit_inverse_ = (mass_ + c_new * damping).cwiseInverse();
+    explicit_keep_ = mass_ + c_old * damping;
     return;
   }
 
@@ -53,7 +53,7 @@ BlockIntegrator::BlockIntegrator(const ReducedSystem& system, int dof_begin, int
     const bool newmark = solver.implicit_scheme == ImplicitScheme::kNewmark;
     const double a0 = newmark ? 4.0 / (h * h) : 1.0 / (h * h);  // mass coefficient
     const double a1 = newmark ? 2.0 / h : 1.0 / h;              // damping coefficient
-    for (int i = 0; i < n; ++i) lhs.coeffRef(i, i) += a0 * mass_[i] + a1 * damping_[i];
+    for (int i = 0; i < n; ++i) lhs.coeffRef(i, i) += a0 * mass_[i] + a1 * damping[i];
   }
   lhs.makeCompressed();
   solver_lhs_.factorize(lhs, linear_solver, name_);

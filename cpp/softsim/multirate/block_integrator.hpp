@@ -33,8 +33,6 @@ class BlockIntegrator {
   int begin() const { return begin_; }
   int end() const { return end_; }
   int size() const { return end_ - begin_; }
-  double step() const { return step_; }
-  const SolverSpec& solver() const { return solver_; }
   const std::string& name() const { return name_; }
   // DOFs outside the block that its rows couple to (001 §5 "connection nodes").
   const std::vector<int>& connections() const { return connections_; }
@@ -63,7 +61,7 @@ class BlockIntegrator {
   double stability_limit_ = std::numeric_limits<double>::infinity();
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;  // K restricted to the block's rows, all columns
   std::vector<int> connections_;
-  Eigen::VectorXd mass_, damping_;
+  Eigen::VectorXd mass_;
   // Explicit: du = h * w, w = (explicit_keep_ .* v + h r) .* explicit_inverse_.
   Eigen::VectorXd explicit_keep_, explicit_inverse_;
   SpdSolver solver_lhs_;

@@ -28,8 +28,6 @@ class ExactReference : public FrameStepper {
   int dofs_per_node() const override { return dofs_per_node_; }
   int primary_nodes() const override { return free_nodes_; }
 
-  const Eigen::MatrixXd& transition() const { return phi_; }  // Phi
-  const Eigen::MatrixXd& input() const { return gamma_; }     // Gamma (2n x dofs_per_node)
   const Eigen::VectorXd& state() const { return state_; }     // [u; v]
   // Spectral radius of the closed haptic loop x+ = (Phi - k_s Gamma E^T [I 0]) x: below 1 the
   // probe spring of stiffness k_s coupled once per frame is stable on the exact model.
@@ -39,7 +37,7 @@ class ExactReference : public FrameStepper {
   int dofs_per_node_;
   int free_nodes_;
   int contact_dof_;
-  Eigen::MatrixXd phi_, gamma_;
+  Eigen::MatrixXd phi_, gamma_;  // Phi, Gamma (2n x dofs_per_node)
   Eigen::VectorXd state_, next_;
 };
 

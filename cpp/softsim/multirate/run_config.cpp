@@ -75,7 +75,8 @@ void read_input(const JsonReader& in, double duration, ProbeSignal& s) {
   in.reject_unknown();
 }
 
-void read_async(const JsonReader& a, const SolverSpec& solver, int free_nodes, double frame_step, AsyncSpec& spec) {
+void read_async(const JsonReader& a, const SolverSpec& solver, int free_nodes, double frame_step, double element_length,
+                AsyncSpec& spec) {
   spec.primary_solver = a.has("primary_solver") ? read_solver(a.at("primary_solver"), solver) : solver;
   spec.interpolate = a.get_bool("interpolate", true);
   spec.merge_full_rate = a.get_bool("merge_full_rate", true);
@@ -102,7 +103,7 @@ void read_async(const JsonReader& a, const SolverSpec& solver, int free_nodes, d
     pol.hold_frames = static_cast<int>(std::llround(hold / frame_step));
     if (pol.kind == PrimarySizePolicy::Kind::kLinear) {
       pol.gradient = p.get_positive("gradient");
-      pol.scale = p.has("scale") ? p.get_positive("scale") : 0.0;  // 0: the element length at the contact
+      pol.scale = p.has("scale") ? p.get_positive("scale") : element_length;  // default: the element length
     } else {
       pol.threshold = p.get_positive("threshold");
     }
@@ -168,7 +169,7 @@ RunConfig read_run_config(const JsonReader& cfg) {
   c.comparison.enforce_stability_limit = cfg.get_bool("check_stability", true);
   if (cfg.has("async")) {
     AsyncSpec a;
-    read_async(cfg.at("async"), c.comparison.whole_solver, free_nodes, loop.frame_step, a);
+    read_async(cfg.at("async"), c.comparison.whole_solver, free_nodes, loop.frame_step, bar_element_length(c.bar), a);
     c.comparison.async = a;
   }
   c.comparison.reference = cfg.get_bool("reference", true);
@@ -230,7 +231,7 @@ std::vector<T> every_kth(const std::vector<T>& v, int k) {
 
 }  // namespace
 
-ReducedSystem build_system(RunConfig& config, ModelSummary& summary) {
+ReducedSystem build_system(const RunConfig& config, ModelSummary& summary) {
   const LinearModel model = make_bar(config.bar);
   ReducedSystem system = reduce(model);
   const double omega1 = lowest_natural_frequency(system);
@@ -239,8 +240,7 @@ ReducedSystem build_system(RunConfig& config, ModelSummary& summary) {
 
   const int n = system.num_dofs();
   summary.free_nodes = system.num_free_nodes();
-  summary.dofs = n;
-  summary.element_length = config.bar.length / (config.bar.nodes - 1);
+  summary.element_length = bar_element_length(config.bar);
   summary.lowest_frequency = omega1 / (2.0 * 3.141592653589793);
   summary.alpha = alpha;
   summary.omega_max_bound = omega_max_bound(system, 0, n);
@@ -249,10 +249,6 @@ ReducedSystem build_system(RunConfig& config, ModelSummary& summary) {
   summary.explicit_limit_backward = explicit_step_limit(system, 0, n, ExplicitVariant::kBackwardDamping);
   summary.contact_static_stiffness =
       1.0 / contact_compliance(system, config.comparison.contact_free_node, config.comparison.loop.direction);
-
-  if (config.comparison.async && config.comparison.async->primary.kind == PrimarySizePolicy::Kind::kLinear &&
-      config.comparison.async->primary.scale == 0.0)
-    config.comparison.async->primary.scale = summary.element_length;
   return system;
 }
 

@@ -33,7 +33,6 @@ RunConfig read_run_config(const io::JsonReader& config);
 // What the model is, for the artifact and for the explicit-step check.
 struct ModelSummary {
   int free_nodes = 0;
-  int dofs = 0;
   double element_length = 0.0;           // m (bar)
   double lowest_frequency = 0.0;         // Hz
   double alpha = 0.0;                    // 1/s, c = alpha m
@@ -45,7 +44,7 @@ struct ModelSummary {
 };
 
 // Builds the reduced system (damping set) and fills the summary.
-ReducedSystem build_system(RunConfig& config, ModelSummary& summary);
+ReducedSystem build_system(const RunConfig& config, ModelSummary& summary);
 
 nlohmann::json make_payload(const RunConfig& config, const ModelSummary& model, const ComparisonResult& result);
 

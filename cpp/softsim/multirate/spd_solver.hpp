@@ -19,7 +19,6 @@ class SpdSolver {
   void factorize(const Eigen::SparseMatrix<double>& matrix, LinearSolverKind kind, const std::string& what);
   // x holds the right-hand side on entry and the solution on return.
   void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
-  int size() const { return size_; }
 
  private:
   LinearSolverKind kind_ = LinearSolverKind::kSparse;
