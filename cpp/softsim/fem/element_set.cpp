@@ -215,7 +215,10 @@ void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
 void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, double* seconds) {
   const int G = static_cast<int>(groups_.size());
   for (int gi = 0; gi < G; ++gi) {
-    const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
+    // Named copies, not a structured binding: the lambda below captures them (C++17 forbids
+    // capturing bindings).
+    const int b = tile_blocks_[static_cast<std::size_t>(tile) * G + gi].first;
+    const int e = tile_blocks_[static_cast<std::size_t>(tile) * G + gi].second;
     if (b >= e || !computed_per_element(groups_[gi])) continue;
     timed(seconds, groups_[gi].kind, [&] { compute_group(groups_[gi], u, b, e, stats); });
   }
