@@ -21,6 +21,7 @@
 #include "softsim/meshless/load_cases.hpp"
 #include "softsim/meshless/manufactured.hpp"
 #include "softsim/meshless/plate_dataset.hpp"
+#include "softsim/meshless/rpim_config.hpp"
 #include "softsim/meshless/rpim_shape.hpp"
 #include "softsim/meshless/studies.hpp"
 
@@ -79,6 +80,18 @@ TEST(GaussLegendre, ExactForDegree2nMinus1) {
       EXPECT_NEAR(sum, exact, 1e-14) << "n = " << n << ", degree " << degree;
     }
   }
+}
+
+TEST(BlockStudyConfig, MissingBlockAndEmptyBlockReadTheSameDocumentedDefaults) {
+  // rpim_precompute.md: block.gauss_order defaults to 3, whether "block" is absent or empty.
+  const nlohmann::json without = nlohmann::json::object(), with_empty = {{"block", nlohmann::json::object()}};
+  const io::JsonReader config(without, "run.json"), empty(with_empty, "run.json");  // readers refer to the values
+  const BlockStudy absent = read_block_study(config.optional("block"));
+  const BlockStudy given = read_block_study(empty.optional("block"));
+  EXPECT_EQ(absent.gauss_order, 3);
+  EXPECT_EQ(given.gauss_order, 3);
+  EXPECT_EQ(absent.nodes_per_edge, given.nodes_per_edge);
+  EXPECT_EQ(absent.edge, given.edge);
 }
 
 TEST(BackgroundCells, WeightsSumToBoxVolume) {

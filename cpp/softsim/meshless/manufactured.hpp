@@ -17,7 +17,7 @@ struct BlockStudy {
   double edge = 1.0;            // cube edge (m)
   int nodes_per_edge = 5;
   int cells_per_edge = 4;
-  int gauss_order = 4;
+  int gauss_order = 3;  // per direction per cell (rpim_precompute.md: block.gauss_order)
   double youngs_modulus = 1000.0;
   double poisson_ratio = 0.3;
 };

@@ -180,7 +180,7 @@ BlockStudy read_block_study(const std::optional<io::JsonReader>& block) {
   b.youngs_modulus = r.get_positive("youngs_modulus", b.youngs_modulus);
   b.poisson_ratio = r.get_double("poisson_ratio", b.poisson_ratio);
   r.require(b.poisson_ratio > -1.0 && b.poisson_ratio < 0.5, "poisson_ratio", "a Poisson ratio in (-1, 0.5)");
-  b.gauss_order = read_int(r, "gauss_order", 3, 1, 10, "an integer between 1 and 10");
+  b.gauss_order = read_int(r, "gauss_order", b.gauss_order, 1, 10, "an integer between 1 and 10");
   r.reject_unknown();
   return b;
 }
