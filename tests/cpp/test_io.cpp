@@ -51,6 +51,16 @@ TEST(JsonReader, UnknownFieldRejected) {
   EXPECT_EQ(message_of([&] { r.reject_unknown(); }), "cfg.json: /nu_typo: unknown field");
 }
 
+TEST(JsonReader, ObjectWithOnlyOptionalMembersRefusesAnotherType) {
+  // {"solver": "implicit"}: every optional member reads as absent, so only the final check can
+  // tell that the value is not an object.
+  const nlohmann::json j = {{"solver", "implicit"}};
+  const io::JsonReader solver = io::JsonReader(j, "cfg.json").at("solver");
+  EXPECT_EQ(solver.get_string("kind", "implicit"), "implicit");
+  EXPECT_NE(message_of([&] { solver.reject_unknown(); }).find("cfg.json: /solver: expected an object"),
+            std::string::npos);
+}
+
 TEST(JsonReader, PositiveAndChoiceChecks) {
   const nlohmann::json j = {{"E", -3.0}, {"kind", "cube"}, {"n", 2.5}};
   io::JsonReader r(j, "c.json");

@@ -672,6 +672,24 @@ TEST(RunConfig, ErrorsNameThePointer) {
   EXPECT_EQ(config_error(j), "run.json: /input/frequncy: unknown field");
 }
 
+TEST(RunConfig, SolverObjectsInheritMissingKeysIncludingKind) {
+  // async_sim.md: solver.kind defaults to "implicit"; a region's solver object inherits the
+  // top-level solver's missing keys, its kind included.
+  nlohmann::json j = base_config();
+  j["solver"] = {{"implicit_scheme", "newmark"}};
+  j["async"]["primary_solver"] = {{"implicit_scheme", "backward_euler"}};
+  j["async"]["secondary"][0]["solver"] = {{"kind", "static"}};
+  const RunConfig c = read_run_config(io::JsonReader(j, "run.json"));
+  EXPECT_EQ(solver_name(c.comparison.whole_solver), "implicit/newmark");
+  ASSERT_TRUE(c.comparison.async.has_value());
+  EXPECT_EQ(solver_name(c.comparison.async->primary_solver), "implicit/backward_euler");
+  EXPECT_EQ(solver_name(c.comparison.async->secondary.at(0).solver), "static");
+  j["solver"] = {{"kind", "explicit"}};
+  j["async"]["primary_solver"] = {{"explicit_variant", "backward_damping"}};
+  EXPECT_EQ(solver_name(read_run_config(io::JsonReader(j, "run.json")).comparison.async->primary_solver),
+            "explicit/backward_damping");
+}
+
 TEST(RunConfig, ExplicitAtTheHapticRateOnAFineBarIsAnInputError) {
   nlohmann::json j = base_config();
   j["solver"] = {{"kind", "explicit"}};

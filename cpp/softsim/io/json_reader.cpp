@@ -99,7 +99,9 @@ std::optional<JsonReader> JsonReader::optional(const std::string& key) const {
 void JsonReader::accept(const std::string& key) const { read_keys_->insert(key); }
 
 void JsonReader::reject_unknown() const {
-  if (!value_->is_object()) return;
+  // Every object reader ends here: a value of another type (whose optional members would all
+  // read as absent) is refused rather than taken for an empty object.
+  if (!value_->is_object()) fail("an object");
   for (auto it = value_->begin(); it != value_->end(); ++it) {
     if (!read_keys_->count(it.key()))
       throw InputError(file_ + ": " + child_pointer(it.key()) + ": unknown field");

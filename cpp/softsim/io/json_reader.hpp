@@ -35,7 +35,8 @@ class JsonReader {
   std::optional<JsonReader> optional(const std::string& key) const;
   // Marks keys as known without reading them (a caller that forwards them elsewhere).
   void accept(const std::string& key) const;
-  // Refuses every member that was not read: "unknown field".
+  // Refuses every member that was not read ("unknown field"), and a value that is not an
+  // object at all (all of whose optional members would otherwise read as absent).
   void reject_unknown() const;
   std::vector<std::string> keys() const;
 

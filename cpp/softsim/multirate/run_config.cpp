@@ -14,7 +14,11 @@ using io::JsonReader;
 
 SolverSpec read_solver(const JsonReader& r, const SolverSpec& fallback) {
   SolverSpec s = fallback;
-  const std::string kind = r.get_choice("kind", {"static", "implicit", "explicit"});
+  // A missing kind keeps the fallback's (the top-level solver's, or implicit at the top).
+  const char* inherited = fallback.kind == SolverKind::kStatic     ? "static"
+                          : fallback.kind == SolverKind::kImplicit ? "implicit"
+                                                                   : "explicit";
+  const std::string kind = r.get_choice("kind", {"static", "implicit", "explicit"}, inherited);
   s.kind = kind == "static" ? SolverKind::kStatic : kind == "implicit" ? SolverKind::kImplicit : SolverKind::kExplicit;
   if (r.has("implicit_scheme"))
     s.implicit_scheme = r.get_choice("implicit_scheme", {"newmark", "backward_euler"}) == "newmark"
