@@ -103,5 +103,8 @@ def max_frequency(X, T, E, nu, rho, constrained_nodes):
     idx = np.flatnonzero(free)
     s = 1.0 / np.sqrt(M[idx])
     A = sp.diags(s) @ K[idx][:, idx] @ sp.diags(s)
-    lam = spla.eigsh(A, k=1, which="LA", return_eigenvectors=False, tol=1e-10)[0]
+    # A seeded random start vector: ARPACK's default start is random and unseeded, which made the
+    # last digits vary from run to run (a constant vector could miss the top mode by symmetry).
+    v0 = np.random.default_rng(0).standard_normal(A.shape[0])
+    lam = spla.eigsh(A, k=1, which="LA", return_eigenvectors=False, tol=1e-10, v0=v0)[0]
     return float(np.sqrt(lam))
