@@ -25,8 +25,7 @@ Eigen::Vector3d read_force(const io::JsonReader& node) {
 }
 
 void require_same_nodes(const fit::Dataset& ds, const fit::FitModel& model) {
-  if (ds.nodes.rows() != model.nodes.rows() || (ds.nodes - model.nodes).cwiseAbs().maxCoeff() > 1e-12 ||
-      ds.loaded_node != model.loaded_node)
+  if (!fit::same_surface(model.nodes, ds.nodes) || ds.loaded_node != model.loaded_node)
     throw InputError(ds.source + ": /payload/top_nodes: expected the surface nodes and loaded node of the fitted datasets");
 }
 

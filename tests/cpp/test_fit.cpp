@@ -505,6 +505,26 @@ TEST(FitModel, RefusesForcesOffTheAxisOfTheirRelation) {
   EXPECT_THROW(fit_surface_model({&ds, nullptr, nullptr}, small_settings(), false), InputError);
 }
 
+TEST(FitModel, SameSurfaceToleratesRoundingRelativeToTheSurfaceExtentOnly) {
+  // A 5 cm surface: a 1e-12 m rounding of one coordinate is the same surface, a 1e-8 m shift or a
+  // missing node is not; the tolerance scales with the extent (the same test at 1 km).
+  Eigen::MatrixXd a(3, 3);
+  a << 0, 0, 0.05, 0.05, 0, 0.05, 0, 0.05, 0.05;
+  Eigen::MatrixXd b = a;
+  b(1, 0) += 1e-12;
+  EXPECT_TRUE(same_surface(a, b));
+  b(1, 0) += 1e-8;
+  EXPECT_FALSE(same_surface(a, b));
+  EXPECT_FALSE(same_surface(a, a.topRows(2)));
+  EXPECT_TRUE(same_surface(2e4 * a, 2e4 * a + Eigen::MatrixXd::Constant(3, 3, 1e-7)));
+}
+
+TEST(FitModel, RefusesDatasetsOnDifferentSurfaces) {
+  Dataset x = axis_dataset(0, 3), y = axis_dataset(1, 3);
+  y.nodes(0, 2) += 1e-6;
+  EXPECT_THROW(fit_surface_model({&x, &y, nullptr}, small_settings(), false), InputError);
+}
+
 TEST(FitModel, ZeroSurfaceIsPlayedAsNoDisplacement) {
   // The paper's choice Δy = 0 under a force along X (Table 1), fixed in the settings.
   const Dataset ds = axis_dataset(0, 4);

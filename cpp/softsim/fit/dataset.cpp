@@ -29,4 +29,11 @@ double off_axis_fraction(const Dataset& data, int direction) {
   return largest > 0.0 ? off / largest : 0.0;
 }
 
+bool same_surface(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  if (a.rows() == 0) return true;
+  const double extent = (a.colwise().maxCoeff() - a.colwise().minCoeff()).norm();
+  return (a - b).cwiseAbs().maxCoeff() <= 1e-9 * std::max(extent, 1e-300);
+}
+
 }  // namespace softsim::fit

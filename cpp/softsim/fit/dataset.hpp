@@ -41,4 +41,10 @@ std::vector<double> force_components(const Dataset& data, int direction);
 // (0 for a dataset whose every force is along `direction`).
 double off_axis_fraction(const Dataset& data, int direction);
 
+// Whether two node lists are the same surface: the same number of nodes, each within 1e-9 of the
+// surface's extent of its counterpart (node coordinates written and read back as JSON numbers
+// agree far better; different meshes differ far more). The one test for every place that pairs
+// datasets or a dataset with a fitted model.
+bool same_surface(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+
 }  // namespace softsim::fit

@@ -42,9 +42,7 @@ void check_datasets(const std::array<const Dataset*, 3>& datasets) {
       first = ds;
       continue;
     }
-    const double extent = (first->nodes.colwise().maxCoeff() - first->nodes.colwise().minCoeff()).norm();
-    if (ds->nodes.rows() != first->nodes.rows() ||
-        (ds->nodes - first->nodes).cwiseAbs().maxCoeff() > 1e-9 * std::max(extent, 1e-300))
+    if (!same_surface(first->nodes, ds->nodes))
       throw InputError(ds->source + ": /payload/top_nodes: expected the same surface nodes as " + first->source);
     if (ds->loaded_node != first->loaded_node)
       throw InputError(ds->source + ": /payload/loaded_node: expected the same loaded node as " + first->source);
