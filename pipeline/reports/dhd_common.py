@@ -101,15 +101,16 @@ KIND_EDGE = {0: (0.15, 0.15, 0.15, 0.9), 1: (1.0, 1.0, 1.0, 0.9), 2: (0.2, 0.35,
 
 
 def draw_deformed(ax, nodes, tets, boundary, u, kinds, vmax=None, view=(22, -58), scale_mm=True,
-                  cmap="viridis"):
-    """The deformed boundary coloured by |u|, triangle edges coloured by the kind of the element
-    they belong to (as in 000 Fig. 10: light edges nonlinear, dark edges linear)."""
+                  cmap="viridis", values=None, axis_labels=True):
+    """The deformed boundary coloured by |u| (or by the nodal scalar `values`, e.g. the difference
+    to TLED, in display units), triangle edges coloured by the kind of the element they belong to
+    (as in 000 Fig. 10: light edges nonlinear, dark edges linear)."""
     from matplotlib import cm, colors
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     f = 1000.0 if scale_mm else 1.0
     x = (nodes + u) * f
-    mag = np.linalg.norm(u, axis=1) * f
+    mag = np.linalg.norm(u, axis=1) * f if values is None else np.asarray(values)
     tri = np.asarray(boundary)
     owner = boundary_owner(np.asarray(tets), tri)
     face_mag = mag[tri].mean(axis=1)
@@ -125,12 +126,20 @@ def draw_deformed(ax, nodes, tets, boundary, u, kinds, vmax=None, view=(22, -58)
     ax.set_ylim(c[1] - r, c[1] + r)
     ax.set_zlim(c[2] - r, c[2] + r)
     ax.view_init(*view)
-    unit = "mm" if scale_mm else "m"
-    ax.set_xlabel(f"x ({unit})", fontsize=7)
-    ax.set_ylabel(f"y ({unit})", fontsize=7)
-    ax.set_zlabel(f"z ({unit})", fontsize=7)
+    if axis_labels:
+        unit = "mm" if scale_mm else "m"
+        ax.set_xlabel(f"x ({unit})", fontsize=7)
+        ax.set_ylabel(f"y ({unit})", fontsize=7)
+        ax.set_zlabel(f"z ({unit})", fontsize=7)
     ax.tick_params(labelsize=6)
     return mapper
+
+
+def draw_difference(ax, nodes, tets, boundary, u, kinds, values_mm, vmax, view=(12, 72)):
+    """The deformed boundary coloured by a nodal difference in mm (e.g. to all-TLED) on the magma
+    scale, without axis labels (it sits under a |u| panel that has them)."""
+    return draw_deformed(ax, nodes, tets, boundary, u, kinds, vmax=vmax, view=view, cmap="magma", values=values_mm,
+                         axis_labels=False)
 
 
 def write_vtu(path, nodes, tets, u, kinds, extra_point_data=None):

@@ -82,7 +82,7 @@ def report(ctx):
         common.draw_deformed(ax, nodes, tets, tri_half, u, kinds, vmax=vmax, view=(12, 72))
         ax.set_title("cut open at the centre plane", fontsize=7)
         ax = fig.add_subplot(grid[2, i], projection="3d")
-        m2 = draw_scalar(ax, nodes, tets, tri_half, u, kinds, diff * 1e3, dmax)
+        m2 = common.draw_difference(ax, nodes, tets, tri_half, u, kinds, diff * 1e3, dmax)
         ax.set_title("|u − u_TLED|, cut open", fontsize=7)
         e = common.displacement_error(u, u_ref, applied=applied)
         slug = x["slug"]
@@ -112,24 +112,3 @@ def report(ctx):
     words += ": the nonlinearity sits under the tool, so the side that holds the TLED elements decides the error."
     common.write_section(ctx, "fig9", "### Fig. 9: the deformed cuboid\n\n![fig9](dhd/fig9.png)\n\n" + md + "\n"
                          + words + "\n")
-
-
-def draw_scalar(ax, nodes, tets, tri, u, kinds, values_mm, vmax):
-    """Like dhd_common.draw_deformed, but coloured by a nodal scalar (the difference to TLED)."""
-    from matplotlib import cm, colors
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
-    x = (nodes + u) * 1e3
-    owner = common.boundary_owner(np.asarray(tets), tri)
-    mapper = cm.ScalarMappable(norm=colors.Normalize(0.0, vmax), cmap="magma")
-    coll = Poly3DCollection(x[tri], facecolors=mapper.to_rgba(values_mm[tri].mean(axis=1)),
-                            edgecolors=[common.KIND_EDGE[int(kinds[o])] for o in owner], linewidths=0.35)
-    ax.add_collection3d(coll)
-    lo, hi = nodes.min(axis=0) * 1e3, nodes.max(axis=0) * 1e3
-    c, r = (lo + hi) / 2, (hi - lo).max() / 2
-    ax.set_xlim(c[0] - r, c[0] + r)
-    ax.set_ylim(c[1] - r, c[1] + r)
-    ax.set_zlim(c[2] - r, c[2] + r)
-    ax.view_init(12, 72)
-    ax.tick_params(labelsize=6)
-    return mapper

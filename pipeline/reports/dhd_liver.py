@@ -99,11 +99,9 @@ def report(ctx):
         ax.scatter(fixed[:, 0], fixed[:, 1], fixed[:, 2], s=1, c="tab:red", alpha=0.5)
         ax.set_title(f"{title}: |u|", fontsize=8)
         ax = fig.add_subplot(grid[1, i], projection="3d")
-        from pipeline.reports.dhd_fig9 import draw_scalar
         diff = np.linalg.norm(u - u_ref, axis=1) * 1e3
         dmax = max(np.linalg.norm(common.displacement(c[1]["run"]) - u_ref, axis=1).max() for c in cases) * 1e3 or 1.0
-        m2 = draw_scalar(ax, nodes, tets, tri, u, kinds, diff, dmax)
-        ax.view_init(28, -70)
+        m2 = common.draw_difference(ax, nodes, tets, tri, u, kinds, diff, dmax, view=(28, -70))
         ax.set_title(f"{title}: |u − u_TLED|", fontsize=8)
     fig.colorbar(m1, cax=fig.add_axes([0.91, 0.55, 0.014, 0.33])).set_label("|u| (mm)", fontsize=8)
     fig.colorbar(m2, cax=fig.add_axes([0.91, 0.08, 0.014, 0.33])).set_label("|u − u_TLED| (mm)", fontsize=8)
