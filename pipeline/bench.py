@@ -67,7 +67,10 @@ def kernel_ratios(path):
     for family, title, extra in [
             ("BM_NodalForces", "Internal nodal forces from the displacements (element phase and the nodal sums of "
              "000 eq. 23)",
-             [("BM_LinearRowsMemoryFloor", "memory floor of the assembled rows (reading their stored values once, "
+             [("BM_LinearRows/repeats:1/kernel:0", "the assembled rows' product alone (without the nodal sums)"),
+              ("BM_LinearRowsSingleValues", "the same product with single-precision stored values (a measured "
+               "option, not used by the engine)"),
+              ("BM_LinearRowsMemoryFloor", "memory floor of the assembled rows (reading their stored values once, "
                "no arithmetic)")]),
             ("BM_Kernel", "Element phase alone (for assembled linear elements: the rows of every node)",
              [("BM_MemoryFloorKernel", "memory floor of the per-element path (same loads and stores, no mechanics)")])]:

@@ -40,6 +40,13 @@ class LinearStiffnessRows {
   bool empty() const { return neighbour_.empty(); }
   int num_blocks() const { return static_cast<int>(neighbour_.size()); }
   int row_blocks(int node) const { return row_begin_[node + 1] - row_begin_[node]; }
+  // Read access to the stored blocks (for measurements of other storage schemes): the blocks of
+  // a node's row are first_block(node) .. first_block(node) + row_blocks(node) − 1.
+  int first_block(int node) const { return row_begin_[node]; }
+  int column_node(int block) const { return neighbour_[block] / 3; }
+  double value(int block, int row, int col) const {
+    return row == 2 && col == 2 ? k22_[block] : block_[8 * static_cast<std::size_t>(block) + 3 * row + col];
+  }
   // Whether Kernel::best is the 8-wide kernel in this build.
   static bool vectorised();
 
