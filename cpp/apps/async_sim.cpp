@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     const multirate::RunConfig config = multirate::read_run_config(cfg);
     multirate::ModelSummary model;
     const multirate::ReducedSystem system = multirate::build_system(config, model);
-    const multirate::ComparisonResult result = multirate::run_comparison(system, config.comparison);
+    const multirate::ComparisonResult result = multirate::run_configured_comparison(system, config);
     ctx.write(multirate::kAsyncRunSchema, multirate::kAsyncRunSchemaVersion,
               multirate::make_payload(config, model, result));
     std::cerr << "async_sim: " << model.free_nodes << " free nodes, whole peak force "

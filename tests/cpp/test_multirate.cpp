@@ -7,6 +7,7 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -18,7 +19,9 @@
 #include "softsim/multirate/exact_reference.hpp"
 #include "softsim/multirate/force_metrics.hpp"
 #include "softsim/multirate/haptic_loop.hpp"
+#include "softsim/multirate/region_layout.hpp"
 #include "softsim/multirate/run_config.hpp"
+#include "softsim/multirate/setup_error.hpp"
 #include "softsim/multirate/stability.hpp"
 #include "softsim/multirate/whole_model.hpp"
 
@@ -160,6 +163,23 @@ TEST(LinearModel, BarLowestFrequencyMatchesDiscreteClosedForm) {
     EXPECT_NEAR(lowest_natural_frequency(sys), expected, 1e-9 * expected) << nodes << " nodes";
     EXPECT_NEAR(expected, kPi * c / (2.0 * b.length), 0.02 * expected);
   }
+}
+
+TEST(LinearModel, TheFactorisationOfTheCheckServesTheLaterSolves) {
+  // reduce() keeps the LDLT of its positive-definiteness check; the solves with K give the same
+  // bits with it as with a factorisation of their own.
+  const ReducedSystem sys = damped_bar(soft_bar(40), 0.3);
+  ASSERT_TRUE(sys.stiffness_ldlt);
+  ReducedSystem uncached = sys;
+  uncached.stiffness_ldlt.reset();
+  const int contact = sys.num_free_nodes() - 1;
+  const Eigen::VectorXd e = Eigen::VectorXd::Ones(1);
+  EXPECT_EQ(lowest_natural_frequency(sys), lowest_natural_frequency(uncached));
+  EXPECT_EQ(contact_compliance(sys, contact, e), contact_compliance(uncached, contact, e));
+  // A renumbered system has another K: it factorises its own.
+  std::vector<int> order(sys.num_free_nodes());
+  for (int k = 0; k < sys.num_free_nodes(); ++k) order[k] = sys.num_free_nodes() - 1 - k;
+  EXPECT_FALSE(renumbered(sys, order).stiffness_ldlt);
 }
 
 TEST(LinearModel, RigidMotionIsRefused) {
@@ -461,6 +481,20 @@ TEST(AsyncRegions, LayoutErrorsAreInputErrors) {
   EXPECT_NO_THROW(AsyncSolver(sys, contact, regions(11, {}, s, true)));                          // primary = whole
 }
 
+TEST(AsyncRegions, BordersFollowTheRegionSizes) {
+  RegionBorders borders(12, 3);
+  EXPECT_EQ(borders.size_of(4), 4);
+  ASSERT_TRUE(borders.fits(4));
+  borders.append(4);
+  EXPECT_EQ(borders.size_of(0), 5);  // 0: the remaining nodes
+  EXPECT_FALSE(borders.fits(6));
+  EXPECT_FALSE(borders.fits(0));
+  EXPECT_FALSE(borders.complete());
+  borders.append(borders.size_of(0));
+  EXPECT_TRUE(borders.complete());
+  EXPECT_EQ(borders.bounds(), (std::vector<int>{3, 7, 12}));
+}
+
 TEST(AsyncRegions, ThreeDofsPerNodeAlongAnAxisBehaveLikeTheBar) {
   // The bar rebuilt with 3 DOFs per node along an oblique axis e (axial stiffness k e e^T plus
   // a lateral stiffness, so the lateral DOFs are supported) and probed along e: the axial
@@ -688,6 +722,27 @@ TEST(RunConfig, SolverObjectsInheritMissingKeysIncludingKind) {
   j["async"]["primary_solver"] = {{"explicit_variant", "backward_damping"}};
   EXPECT_EQ(solver_name(read_run_config(io::JsonReader(j, "run.json")).comparison.async->primary_solver),
             "explicit/backward_damping");
+}
+
+TEST(RunConfig, SetupErrorsNameTheConfigMemberOfTheSetting) {
+  EXPECT_EQ(config_pointer({SettingAtFault::Kind::kWholeSolver}), "/solver");
+  EXPECT_EQ(config_pointer({SettingAtFault::Kind::kPrimarySolver}), "/async/primary_solver");
+  EXPECT_EQ(config_pointer({SettingAtFault::Kind::kSecondarySolver, 1}), "/async/secondary/1/solver");
+  EXPECT_EQ(config_pointer({SettingAtFault::Kind::kProbeStiffness}), "/haptics/probe_stiffness");
+  // An explicit secondary region every 20 frames of this bar is far above its limit.
+  nlohmann::json j = base_config();
+  j["async"]["secondary"][0]["solver"] = {{"kind", "explicit"}};
+  const RunConfig config = read_run_config(io::JsonReader(j, "run.json"));
+  ModelSummary summary;
+  const ReducedSystem sys = build_system(config, summary);
+  try {
+    run_configured_comparison(sys, config);
+    ADD_FAILURE() << "an explicit region above its stability limit ran";
+  } catch (const ConfigInputError& e) {
+    EXPECT_EQ(e.pointer, "/async/secondary/0/solver");
+    EXPECT_EQ(std::string(e.what()).rfind("secondary region 1: explicit step 0.02 s exceeds the stability limit", 0), 0u)
+        << e.what();
+  }
 }
 
 TEST(RunConfig, ExplicitAtTheHapticRateOnAFineBarIsAnInputError) {

@@ -44,24 +44,23 @@ AsyncSolver::AsyncSolver(const ReducedSystem& system, int contact_free_node, con
 
   // Region bounds in contact-distance order: the primary region may grow up to max_nodes; the
   // secondary regions follow it.
-  std::vector<int> bounds = {p.max_nodes};
+  RegionBorders borders(nodes_, p.max_nodes);
   for (std::size_t r = 0; r < spec.secondary.size(); ++r) {
     const SecondaryRegionSpec& s = spec.secondary[r];
     const std::string name = "secondary region " + std::to_string(r + 1);
     if (s.every < 1) throw InputError(name + ": `every` must be at least 1");
-    int size = s.nodes;
-    if (size == 0) {
-      if (r + 1 != spec.secondary.size()) throw InputError(name + ": only the last region may take the remaining nodes");
-      size = nodes_ - bounds.back();
-    }
-    if (size < 1 || bounds.back() + size > nodes_)
-      throw InputError(name + ": " + std::to_string(size) + " nodes do not fit after node " + std::to_string(bounds.back()) +
+    if (s.nodes == 0 && r + 1 != spec.secondary.size())
+      throw InputError(name + ": only the last region may take the remaining nodes");
+    const int size = borders.size_of(s.nodes);
+    if (!borders.fits(size))
+      throw InputError(name + ": " + std::to_string(size) + " nodes do not fit after node " + std::to_string(borders.end()) +
                        " of " + std::to_string(nodes_) + " free nodes");
-    bounds.push_back(bounds.back() + size);
+    borders.append(size);
   }
-  if (bounds.back() != nodes_)
-    throw InputError("asynchronous regions: the regions cover " + std::to_string(bounds.back()) + " of " +
+  if (!borders.complete())
+    throw InputError("asynchronous regions: the regions cover " + std::to_string(borders.end()) + " of " +
                      std::to_string(nodes_) + " free nodes");
+  const std::vector<int>& bounds = borders.bounds();
 
   // Leading full-rate regions with the primary's solver are part of the primary solve.
   std::size_t merged = 0;
@@ -75,20 +74,20 @@ AsyncSolver::AsyncSolver(const ReducedSystem& system, int contact_free_node, con
   const LinearSolverKind ls = spec.linear_solver;
   const bool enforce = spec.enforce_stability_limit;
   auto make_block = [&](int begin_node, int end_node, const SolverSpec& solver, int every, const std::string& name,
-                        const std::string& pointer) {
+                        SettingAtFault solver_setting) {
     owned_.push_back(std::make_unique<BlockIntegrator>(system_, begin_node * dpn_, end_node * dpn_, solver,
-                                                       every * frame_step_, ls, enforce, name, pointer));
+                                                       every * frame_step_, ls, enforce, name, solver_setting));
     return owned_.back().get();
   };
+  const SettingAtFault primary_setting{SettingAtFault::Kind::kPrimarySolver};
   if (merged > 0) {
     primary_min_ = bounds[merged];
-    primary_blocks_.push_back(make_block(0, primary_min_, spec.primary_solver, 1, "primary region", "/async/primary_solver"));
+    primary_blocks_.push_back(make_block(0, primary_min_, spec.primary_solver, 1, "primary region", primary_setting));
   } else {
     primary_min_ = p.min_nodes;
     for (int n = p.min_nodes; n <= p.max_nodes; ++n)
       primary_blocks_.push_back(
-          make_block(0, n, spec.primary_solver, 1, "primary region (" + std::to_string(n) + " nodes)",
-                     "/async/primary_solver"));
+          make_block(0, n, spec.primary_solver, 1, "primary region (" + std::to_string(n) + " nodes)", primary_setting));
   }
   region_of_node_.assign(nodes_, 0);
   for (std::size_t r = merged; r < spec.secondary.size(); ++r) {
@@ -98,11 +97,11 @@ AsyncSolver::AsyncSolver(const ReducedSystem& system, int contact_free_node, con
     Secondary sec;
     sec.every = s.every;
     const std::string name = "secondary region " + std::to_string(r + 1);
-    const std::string pointer = "/async/secondary/" + std::to_string(r) + "/solver";
+    const SettingAtFault setting{SettingAtFault::Kind::kSecondarySolver, static_cast<int>(r)};
     if (follows_primary && adaptive_) {
-      for (int n = p.min_nodes; n <= p.max_nodes; ++n) sec.blocks.push_back(make_block(n, end_node, s.solver, s.every, name, pointer));
+      for (int n = p.min_nodes; n <= p.max_nodes; ++n) sec.blocks.push_back(make_block(n, end_node, s.solver, s.every, name, setting));
     } else {
-      sec.blocks.push_back(make_block(begin_node, end_node, s.solver, s.every, name, pointer));
+      sec.blocks.push_back(make_block(begin_node, end_node, s.solver, s.every, name, setting));
     }
     for (int node = begin_node; node < end_node; ++node) region_of_node_[node] = static_cast<int>(secondary_.size());
     secondary_.push_back(std::move(sec));

@@ -42,23 +42,30 @@ struct SecondaryRegionSpec {
   SolverSpec solver;
 };
 
-struct AsyncSpec {
-  double frame_step = 1e-3;  // s, 1 / haptic rate
+// The regions themselves: their sizes, rates and solvers and how they exchange values.
+struct AsyncRegionsSpec {
   PrimarySizePolicy primary;
   SolverSpec primary_solver;
   std::vector<SecondaryRegionSpec> secondary;
   bool interpolate = true;
-  LinearSolverKind linear_solver = LinearSolverKind::kSparse;
-  bool enforce_stability_limit = true;
   // Solve leading full-rate regions with the primary in one system (true), or in turn like
   // any other region (false: isolates the cost of the region-by-region exchange of eq. 7).
   bool merge_full_rate = true;
 };
 
+// The regions and the settings they share with the whole model of the same run (a comparison
+// keeps those once, for both).
+struct AsyncSpec : AsyncRegionsSpec {
+  double frame_step = 1e-3;  // s, 1 / haptic rate
+  LinearSolverKind linear_solver = LinearSolverKind::kSparse;
+  bool enforce_stability_limit = true;
+};
+
 class AsyncSolver : public FrameStepper {
  public:
   // Throws InputError for an inconsistent layout (sizes that do not cover the free nodes, an
-  // adaptive range outside the model, an explicit region above its stability limit).
+  // adaptive range outside the model) and SetupError for an explicit region above its stability
+  // limit (blaming that region's solver).
   AsyncSolver(const ReducedSystem& system, int contact_free_node, const AsyncSpec& spec);
   AsyncSolver(const AsyncSolver&) = delete;
   AsyncSolver& operator=(const AsyncSolver&) = delete;

@@ -11,7 +11,7 @@ namespace softsim::multirate {
 
 BlockIntegrator::BlockIntegrator(const ReducedSystem& system, int dof_begin, int dof_end, const SolverSpec& solver,
                                  double step, LinearSolverKind linear_solver, bool enforce_stability_limit,
-                                 std::string name, std::string config_pointer)
+                                 std::string name, SettingAtFault solver_setting)
     : name_(std::move(name)), begin_(dof_begin), end_(dof_end), step_(step), solver_(solver) {
   if (dof_begin < 0 || dof_end > system.num_dofs() || dof_end <= dof_begin)
     throw InputError(name_ + ": empty or out-of-range DOF block");
@@ -37,7 +37,7 @@ BlockIntegrator::BlockIntegrator(const ReducedSystem& system, int dof_begin, int
       msg << name_ << ": explicit step " << h << " s exceeds the stability limit " << stability_limit_
           << " s (001 eq. 4; " << (solver.explicit_variant == ExplicitVariant::kCentral ? "eq. 5" : "eq. 6")
           << " with omega_max <= " << omega_max_bound(system, begin_, end_) << " rad/s)";
-      throw ConfigInputError(config_pointer, msg.str());
+      throw SetupError(solver_setting, msg.str());
     }
     // 001 eq. 5 (velocity form): (M + h/2 C) w+ = (M - h/2 C) w- + h r
     // 001 eq. 6:                 (M + h C)   w+ = M w- + h r

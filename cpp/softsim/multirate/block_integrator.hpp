@@ -16,6 +16,7 @@
 #include <Eigen/SparseCore>
 
 #include "softsim/multirate/linear_model.hpp"
+#include "softsim/multirate/setup_error.hpp"
 #include "softsim/multirate/solver_spec.hpp"
 #include "softsim/multirate/spd_solver.hpp"
 
@@ -24,11 +25,11 @@ namespace softsim::multirate {
 class BlockIntegrator {
  public:
   // `step` is this block's time step h (its update interval). An explicit block whose step is
-  // above the stability limit throws ConfigInputError at `config_pointer` (the config member
-  // that chose its solver) when enforce_stability_limit is set.
+  // above the stability limit throws SetupError blaming `solver_setting` (the setting that chose
+  // its solver) when enforce_stability_limit is set.
   BlockIntegrator(const ReducedSystem& system, int dof_begin, int dof_end, const SolverSpec& solver,
                   double step, LinearSolverKind linear_solver, bool enforce_stability_limit, std::string name,
-                  std::string config_pointer);
+                  SettingAtFault solver_setting);
 
   int begin() const { return begin_; }
   int end() const { return end_; }

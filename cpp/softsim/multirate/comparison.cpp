@@ -6,10 +6,9 @@
 #include <memory>
 #include <sstream>
 
-#include <Eigen/SparseCholesky>
-
 #include "softsim/io/errors.hpp"
 #include "softsim/multirate/exact_reference.hpp"
+#include "softsim/multirate/setup_error.hpp"
 #include "softsim/multirate/whole_model.hpp"
 
 namespace softsim::multirate {
@@ -36,13 +35,12 @@ SignalSummary summarise(const LoopRecord& record, double seconds_per_frame) {
 
 double contact_compliance(const ReducedSystem& system, int contact_free_node, const Eigen::VectorXd& direction) {
   const int p = system.dofs_per_node;
-  Eigen::SparseMatrix<double> k = system.stiffness;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(k);
-  if (ldlt.info() != Eigen::Success) throw NumericalError("contact compliance: stiffness factorisation failed");
+  const std::shared_ptr<const StiffnessLdlt> ldlt = factorised_stiffness(system);
+  if (ldlt->info() != Eigen::Success) throw NumericalError("contact compliance: stiffness factorisation failed");
   Eigen::VectorXd f = Eigen::VectorXd::Zero(system.num_dofs());
   const Eigen::VectorXd e = direction.normalized();
   f.segment(contact_free_node * p, p) = e;
-  const Eigen::VectorXd u = ldlt.solve(f);
+  const Eigen::VectorXd u = ldlt->solve(f);
   return e.dot(u.segment(contact_free_node * p, p));
 }
 
@@ -55,7 +53,7 @@ ComparisonResult run_comparison(const ReducedSystem& system, const ComparisonSpe
       std::ostringstream msg;
       msg << "static solver: the haptic loop diverges, probe stiffness x contact compliance = " << gain
           << " >= 1 (the probe spring must be softer than the model at the contact node)";
-      throw ConfigInputError("/haptics/probe_stiffness", msg.str());
+      throw SetupError({SettingAtFault::Kind::kProbeStiffness}, msg.str());
     }
   }
 
@@ -64,10 +62,7 @@ ComparisonResult run_comparison(const ReducedSystem& system, const ComparisonSpe
   result.explicit_limit = whole.block().stability_limit();
   std::unique_ptr<AsyncSolver> async;
   if (spec.async) {
-    AsyncSpec a = *spec.async;
-    a.frame_step = loop.frame_step;
-    a.linear_solver = spec.linear_solver;
-    a.enforce_stability_limit = spec.enforce_stability_limit;
+    const AsyncSpec a{*spec.async, loop.frame_step, spec.linear_solver, spec.enforce_stability_limit};
     async = std::make_unique<AsyncSolver>(system, spec.contact_free_node, a);
     result.explicit_limit = std::min(result.explicit_limit, async->smallest_stability_limit());
     result.async_blocks = async->blocks();

@@ -20,7 +20,7 @@ struct ComparisonSpec {
   SolverSpec whole_solver;
   LinearSolverKind linear_solver = LinearSolverKind::kSparse;
   bool enforce_stability_limit = true;
-  std::optional<AsyncSpec> async;  // frame_step and linear_solver are taken from the loop and above
+  std::optional<AsyncRegionsSpec> async;  // run with the loop's frame step and the two settings above
   bool reference = true;
   ProbeSignal signal;
   HapticLoopSpec loop;
@@ -49,7 +49,8 @@ struct ComparisonResult {
 // static haptic loop f = k_s (p - u_c) on a static model converges only if k_s times it < 1.
 double contact_compliance(const ReducedSystem& system, int contact_free_node, const Eigen::VectorXd& direction);
 
-// Throws InputError for a static whole model whose loop cannot converge (k_s * compliance >= 1).
+// Throws SetupError blaming the probe stiffness for a static whole model whose loop cannot
+// converge (k_s * compliance >= 1), and blaming a solver for an explicit step above its limit.
 ComparisonResult run_comparison(const ReducedSystem& system, const ComparisonSpec& spec);
 
 }  // namespace softsim::multirate

@@ -5,8 +5,6 @@
 #include <set>
 #include <string>
 
-#include <Eigen/SparseCholesky>
-
 #include "softsim/io/errors.hpp"
 
 namespace softsim::multirate {
@@ -91,12 +89,18 @@ ReducedSystem reduce(const LinearModel& model) {
   for (int f = 0; f < free_nodes; ++f) sys.neighbours[f].assign(adjacency[f].begin(), adjacency[f].end());
 
   // Positive definiteness: the supports must remove every rigid-body motion.
-  Eigen::SparseMatrix<double> k_col = sys.stiffness;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(k_col);
-  if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array() <= 0.0).any())
+  std::shared_ptr<const StiffnessLdlt> ldlt = factorised_stiffness(sys);
+  if (ldlt->info() != Eigen::Success || (ldlt->vectorD().array() <= 0.0).any())
     throw NumericalError("linear model: the condensed stiffness matrix is not positive definite "
                          "(the fixed nodes do not remove every rigid-body motion)");
+  sys.stiffness_ldlt = std::move(ldlt);
   return sys;
+}
+
+std::shared_ptr<const StiffnessLdlt> factorised_stiffness(const ReducedSystem& system) {
+  if (system.stiffness_ldlt) return system.stiffness_ldlt;
+  const Eigen::SparseMatrix<double> k_col = system.stiffness;
+  return std::make_shared<StiffnessLdlt>(k_col);
 }
 
 void set_mass_proportional_damping(ReducedSystem& system, double alpha) {
@@ -107,14 +111,14 @@ void set_mass_proportional_damping(ReducedSystem& system, double alpha) {
 double lowest_natural_frequency(const ReducedSystem& system) {
   // Inverse iteration on K x = lambda M x: x <- K^-1 M x converges to the lowest mode at the
   // rate lambda_1 / lambda_2; the Rayleigh quotient converges at its square.
-  Eigen::SparseMatrix<double> k_col = system.stiffness;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(k_col);
-  if (ldlt.info() != Eigen::Success) throw NumericalError("natural frequency: stiffness factorisation failed");
+  const Eigen::SparseMatrix<double> k_col = system.stiffness;  // for the Rayleigh quotient
+  const std::shared_ptr<const StiffnessLdlt> ldlt = factorised_stiffness(system);
+  if (ldlt->info() != Eigen::Success) throw NumericalError("natural frequency: stiffness factorisation failed");
   const Eigen::VectorXd& m = system.mass;
   Eigen::VectorXd x = Eigen::VectorXd::Ones(system.num_dofs());
   double lambda = 0.0;
   for (int it = 0; it < 10000; ++it) {
-    Eigen::VectorXd y = ldlt.solve(m.cwiseProduct(x));
+    Eigen::VectorXd y = ldlt->solve(m.cwiseProduct(x));
     const double next = y.dot(k_col * y) / y.dot(m.cwiseProduct(y));
     y /= std::sqrt(y.dot(m.cwiseProduct(y)));
     x = y;

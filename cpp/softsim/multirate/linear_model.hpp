@@ -4,9 +4,11 @@
 // matrices assembled into K, a lumped (diagonal) mass, a diagonal damping, and the essential
 // boundary conditions condensed out ("the stiffness matrix is condensed so that it does not
 // contain the boundary-condition nodes", 001 §3).
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 namespace softsim::multirate {
@@ -31,6 +33,9 @@ struct LinearModel {
   int num_nodes() const { return static_cast<int>(positions.size()); }
 };
 
+// The sparse LDLT factorisation (fill-reducing AMD ordering) of K in column-major storage.
+using StiffnessLdlt = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+
 // The model with the fixed nodes condensed out. Free DOF of free node f, component d:
 // f * dofs_per_node + d.
 struct ReducedSystem {
@@ -42,6 +47,10 @@ struct ReducedSystem {
   Eigen::SparseMatrix<double, Eigen::RowMajor> stiffness;  // K over the free DOFs (symmetric)
   Eigen::VectorXd mass;                     // lumped mass per free DOF (kg)
   Eigen::VectorXd damping;                  // diagonal damping per free DOF (N s/m)
+  // K factorised once by reduce() for its positive-definiteness check and shared by the later
+  // solves with K (natural frequency, contact compliance); empty for a system built otherwise
+  // (renumbered). Whatever changes `stiffness` must reset it.
+  std::shared_ptr<const StiffnessLdlt> stiffness_ldlt;
 
   int num_free_nodes() const { return static_cast<int>(model_node.size()); }
   int num_dofs() const { return static_cast<int>(mass.size()); }
@@ -52,6 +61,9 @@ struct ReducedSystem {
 // positive definite K (the supports must remove every rigid motion). Damping starts at zero.
 // Bad model data -> InputError; a K that is not positive definite -> NumericalError.
 ReducedSystem reduce(const LinearModel& model);
+
+// The LDLT of the system's K: the one reduce() made, or a new one (check its info()).
+std::shared_ptr<const StiffnessLdlt> factorised_stiffness(const ReducedSystem& system);
 
 // Diagonal damping c_i = alpha * m_i (mass-proportional, so the modes stay uncoupled and the
 // explicit stability limit has a closed form).

@@ -37,6 +37,8 @@ std::vector<int> contact_distance_order(const ReducedSystem& system, int contact
   return order;
 }
 
+RegionBorders::RegionBorders(int free_nodes, int primary_nodes) : free_nodes_(free_nodes), bounds_{primary_nodes} {}
+
 int linear_primary_size(const PrimarySizePolicy& policy, double deformation) {
   const double target = std::ceil(policy.gradient * deformation / policy.scale);
   if (!(target > policy.min_nodes)) return policy.min_nodes;  // also catches NaN

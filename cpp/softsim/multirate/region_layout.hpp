@@ -14,6 +14,29 @@ namespace softsim::multirate {
 // cannot reach through elements come last.
 std::vector<int> contact_distance_order(const ReducedSystem& system, int contact_free_node);
 
+// The border vector built region by region: the primary region's largest size, then each
+// secondary region in turn. The one layout check shared by the config reader (which names the
+// member at fault) and the regions solver (which refuses an inconsistent layout).
+class RegionBorders {
+ public:
+  RegionBorders(int free_nodes, int primary_nodes);
+  // Nodes the next region takes when it asks for `requested` (0: every node not yet assigned).
+  int size_of(int requested) const { return requested == 0 ? remaining() : requested; }
+  // Whether a region of `size` nodes fits after the last border.
+  bool fits(int size) const { return size >= 1 && size <= remaining(); }
+  // Appends a region of `size` nodes; call fits(size) first.
+  void append(int size) { bounds_.push_back(end() + size); }
+  int end() const { return bounds_.back(); }  // nodes assigned so far
+  int remaining() const { return free_nodes_ - end(); }
+  bool complete() const { return end() == free_nodes_; }
+  // The borders: bounds()[0] is the primary size, region r spans [bounds()[r], bounds()[r + 1]).
+  const std::vector<int>& bounds() const { return bounds_; }
+
+ private:
+  int free_nodes_;
+  std::vector<int> bounds_;
+};
+
 // Size of the primary region (001 §5 "adaptable asynchronous regions", Fig. 5).
 struct PrimarySizePolicy {
   enum class Kind {

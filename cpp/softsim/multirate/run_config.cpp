@@ -80,7 +80,7 @@ void read_input(const JsonReader& in, double duration, ProbeSignal& s) {
 }
 
 void read_async(const JsonReader& a, const SolverSpec& solver, int free_nodes, double frame_step, double element_length,
-                AsyncSpec& spec) {
+                AsyncRegionsSpec& spec) {
   spec.primary_solver = a.has("primary_solver") ? read_solver(a.at("primary_solver"), solver) : solver;
   spec.interpolate = a.get_bool("interpolate", true);
   spec.merge_full_rate = a.get_bool("merge_full_rate", true);
@@ -115,7 +115,7 @@ void read_async(const JsonReader& a, const SolverSpec& solver, int free_nodes, d
   p.reject_unknown();
 
   const JsonReader list = a.at("secondary");
-  int assigned = spec.primary.max_nodes;
+  RegionBorders borders(free_nodes, spec.primary.max_nodes);
   for (std::size_t r = 0; r < list.size(); ++r) {
     const JsonReader s = list[r];
     SecondaryRegionSpec region;
@@ -129,18 +129,18 @@ void read_async(const JsonReader& a, const SolverSpec& solver, int free_nodes, d
               last ? "a node count from 0 (the remaining nodes) to " + std::to_string(free_nodes)
                    : "a node count from 1 to " + std::to_string(free_nodes));
     region.nodes = static_cast<int>(nodes);
-    const int size = region.nodes == 0 ? free_nodes - assigned : region.nodes;
-    s.require(size >= 1 && assigned + size <= free_nodes, "nodes",
-              "a region that fits: " + std::to_string(free_nodes - assigned) + " free nodes remain after node " +
-                  std::to_string(assigned));
-    assigned += size;
+    const int size = borders.size_of(region.nodes);
+    s.require(borders.fits(size), "nodes",
+              "a region that fits: " + std::to_string(borders.remaining()) + " free nodes remain after node " +
+                  std::to_string(borders.end()));
+    borders.append(size);
     region.solver = s.has("solver") ? read_solver(s.at("solver"), solver) : solver;
     s.reject_unknown();
     spec.secondary.push_back(region);
   }
-  if (assigned != free_nodes)
+  if (!borders.complete())
     list.fail("regions covering all " + std::to_string(free_nodes) + " free nodes (they cover " +
-              std::to_string(assigned) + ")");
+              std::to_string(borders.end()) + ")");
   if (spec.secondary.empty()) a.fail_member("secondary", "at least one secondary region");
   a.reject_unknown();
 }
@@ -172,7 +172,7 @@ RunConfig read_run_config(const JsonReader& cfg) {
                                                                                 : LinearSolverKind::kDense;
   c.comparison.enforce_stability_limit = cfg.get_bool("check_stability", true);
   if (cfg.has("async")) {
-    AsyncSpec a;
+    AsyncRegionsSpec a;
     read_async(cfg.at("async"), c.comparison.whole_solver, free_nodes, loop.frame_step, bar_element_length(c.bar), a);
     c.comparison.async = a;
   }
@@ -256,6 +256,25 @@ ReducedSystem build_system(const RunConfig& config, ModelSummary& summary) {
   return system;
 }
 
+std::string config_pointer(const SettingAtFault& setting) {
+  switch (setting.kind) {
+    case SettingAtFault::Kind::kWholeSolver: return "/solver";
+    case SettingAtFault::Kind::kPrimarySolver: return "/async/primary_solver";
+    case SettingAtFault::Kind::kSecondarySolver:
+      return "/async/secondary/" + std::to_string(setting.secondary_index) + "/solver";
+    case SettingAtFault::Kind::kProbeStiffness: return "/haptics/probe_stiffness";
+  }
+  return "";
+}
+
+ComparisonResult run_configured_comparison(const ReducedSystem& system, const RunConfig& config) {
+  try {
+    return run_comparison(system, config.comparison);
+  } catch (const SetupError& e) {
+    throw ConfigInputError(config_pointer(e.setting), e.what());
+  }
+}
+
 nlohmann::json make_payload(const RunConfig& config, const ModelSummary& model, const ComparisonResult& result) {
   const ComparisonSpec& spec = config.comparison;
   nlohmann::json p;
@@ -292,7 +311,7 @@ nlohmann::json make_payload(const RunConfig& config, const ModelSummary& model, 
   if (spec.reference) p["whole"]["error_vs_exact"] = error_json(result.whole_vs_exact);
 
   if (spec.async) {
-    const AsyncSpec& a = *spec.async;
+    const AsyncRegionsSpec& a = *spec.async;
     nlohmann::json as = summary_json(result.async_summary);
     as["speed_gain"] = result.whole_summary.seconds_per_frame / result.async_summary.seconds_per_frame;
     as["interpolate"] = a.interpolate;

@@ -8,6 +8,7 @@
 #include "softsim/io/json_reader.hpp"
 #include "softsim/multirate/bar_model.hpp"
 #include "softsim/multirate/comparison.hpp"
+#include "softsim/multirate/setup_error.hpp"
 
 namespace softsim::multirate {
 
@@ -45,6 +46,13 @@ struct ModelSummary {
 
 // Builds the reduced system (damping set) and fills the summary.
 ReducedSystem build_system(const RunConfig& config, ModelSummary& summary);
+
+// The config member (JSON pointer) that chose a setting found at fault in set-up.
+std::string config_pointer(const SettingAtFault& setting);
+
+// run_comparison on the configured run, with a setting at fault reported at its config member
+// (ConfigInputError), like the errors of read_run_config.
+ComparisonResult run_configured_comparison(const ReducedSystem& system, const RunConfig& config);
 
 nlohmann::json make_payload(const RunConfig& config, const ModelSummary& model, const ComparisonResult& result);
 

@@ -12,7 +12,7 @@ WholeModel::WholeModel(const ReducedSystem& system, int contact_free_node, const
       free_nodes_(system.num_free_nodes()),
       contact_dof_(contact_free_node * system.dofs_per_node),
       block_(system, 0, system.num_dofs(), solver, frame_step, linear_solver, enforce_stability_limit,
-             "whole model", "/solver") {
+             "whole model", {SettingAtFault::Kind::kWholeSolver}) {
   if (contact_free_node < 0 || contact_free_node >= free_nodes_)
     throw InputError("whole model: contact node is not a free node");
   reset();
