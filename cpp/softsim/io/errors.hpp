@@ -13,8 +13,9 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Bad input found by the library after the config was read (e.g. a time step above the stability
-// limit): it knows the config member at fault but not the file; run_app prefixes the file.
+// Bad input found after the config was read (e.g. a time step above the stability limit): the
+// thrower (a solver, or a tool's config layer translating a library error) names the config
+// member at fault but not the file; run_app prefixes the file.
 struct ConfigInputError : InputError {
   ConfigInputError(std::string pointer_, const std::string& what)
       : InputError(what), pointer(std::move(pointer_)) {}
