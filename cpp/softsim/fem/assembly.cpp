@@ -9,14 +9,6 @@
 namespace softsim::fem {
 
 namespace {
-Corners gather_corners(const mesh::Tet& t, const double* u) {
-  Corners c;
-  for (int a = 0; a < 4; ++a) c[a] = Eigen::Vector3d(u[3 * t[a]], u[3 * t[a] + 1], u[3 * t[a] + 2]);
-  return c;
-}
-}  // namespace
-
-namespace {
 std::vector<TetShape> tet_shapes(const mesh::TetMesh& mesh) {
   std::vector<TetShape> shapes;
   shapes.reserve(mesh.tets.size());
@@ -67,7 +59,7 @@ Assembler::Assembler(const mesh::TetMesh& mesh, const std::vector<ElementKind>& 
 void Assembler::internal_forces(const double* u, Eigen::VectorXd& f) const {
   f.setZero(3 * num_nodes_);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
-    const Corners fe = element_forces(material_, kinds_[e], shapes_[e], gather_corners(tets_[e], u));
+    const Corners fe = element_forces(material_, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
     for (int a = 0; a < 4; ++a) f.segment<3>(3 * tets_[e][a]) += fe[a];
   }
   nodal_pressure_.add_forces(u, f);
@@ -78,7 +70,7 @@ void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
   double* values = K.valuePtr();
   std::fill(values, values + K.nonZeros(), 0.0);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
-    const ElementMatrix Ke = element_tangent(material_, kinds_[e], shapes_[e], gather_corners(tets_[e], u));
+    const ElementMatrix Ke = element_tangent(material_, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
     const int* idx = &value_index_[e * 144];
     for (int r = 0; r < 12; ++r)
       for (int c = 0; c < 12; ++c) values[idx[r * 12 + c]] += Ke(r, c);
@@ -89,14 +81,14 @@ void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
 double Assembler::strain_energy(const double* u) const {
   double w = 0;
   for (std::size_t e = 0; e < tets_.size(); ++e)
-    w += element_energy(material_, kinds_[e], shapes_[e], gather_corners(tets_[e], u));
+    w += element_energy(material_, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
   return w + nodal_pressure_.energy(u);
 }
 
 double Assembler::min_volume_ratio(const double* u, int* element) const {
   double jmin = 1e300;
   for (std::size_t e = 0; e < tets_.size(); ++e) {
-    const double J = deformation_gradient(shapes_[e], gather_corners(tets_[e], u)).determinant();
+    const double J = volume_ratio(shapes_[e], corner_displacements(tets_[e], u));
     if (J < jmin) {
       jmin = J;
       if (element) *element = static_cast<int>(e);

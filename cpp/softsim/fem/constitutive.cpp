@@ -35,13 +35,23 @@ double energy_density(const Material& m, ElementKind kind, const Eigen::Matrix3d
   return 0.0;
 }
 
-Eigen::Matrix3d first_piola_increment(const Material& m, ElementKind kind, const Eigen::Matrix3d& F,
-                                      const Eigen::Matrix3d& dF) {
+FirstPiolaLinearisation::FirstPiolaLinearisation(const Material& m, ElementKind kind, const Eigen::Matrix3d& F)
+    : material_(m), kind_(kind) {
   switch (kind) {
+    case ElementKind::linear: break;  // dP does not depend on F
+    case ElementKind::tled: neo_hookean_ = material::linearise(m.neo_hookean, F); break;
+    case ElementKind::corotational: corotated_ = material::corotated_linearise(F); break;
+    case ElementKind::anp: neo_hookean_ = material::linearise(m.isochoric, F); break;
+  }
+}
+
+Eigen::Matrix3d FirstPiolaLinearisation::increment(const Eigen::Matrix3d& dF) const {
+  const Material& m = material_;
+  switch (kind_) {
     case ElementKind::linear: return material::linear_stress_increment(m.lame, dF);
-    case ElementKind::tled: return material::first_piola_increment(m.neo_hookean, F, dF);
-    case ElementKind::corotational: return material::corotated_first_piola_increment(m.lame, F, dF);
-    case ElementKind::anp: return material::first_piola_increment(m.isochoric, F, dF);
+    case ElementKind::tled: return material::first_piola_increment(m.neo_hookean, neo_hookean_, dF);
+    case ElementKind::corotational: return material::corotated_first_piola_increment(m.lame, corotated_, dF);
+    case ElementKind::anp: return material::first_piola_increment(m.isochoric, neo_hookean_, dF);
   }
   return Eigen::Matrix3d::Zero();
 }

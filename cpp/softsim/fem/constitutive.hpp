@@ -8,6 +8,7 @@
 #include "softsim/fem/element_kind.hpp"
 #include "softsim/material/elastic.hpp"
 #include "softsim/material/neo_hookean.hpp"
+#include "softsim/material/small_strain.hpp"
 
 namespace softsim::fem {
 
@@ -23,7 +24,21 @@ struct Material {
 
 Eigen::Matrix3d first_piola(const Material& m, ElementKind kind, const Eigen::Matrix3d& F);
 double energy_density(const Material& m, ElementKind kind, const Eigen::Matrix3d& F);
-Eigen::Matrix3d first_piola_increment(const Material& m, ElementKind kind, const Eigen::Matrix3d& F,
-                                      const Eigen::Matrix3d& dF);
+
+// dP(F)[dF] for many dF at one F (the 12 columns of an element tangent), with the set-up that
+// depends on F alone done once: the polar decomposition and (tr(S) I − S)⁻¹ of the corotational
+// kind, J^(−2/3) of the decoupled neo-Hookean form (material/*.hpp). Each dP is bit for bit the
+// one-shot first_piola_increment's. Holds a reference to the material.
+class FirstPiolaLinearisation {
+ public:
+  FirstPiolaLinearisation(const Material& m, ElementKind kind, const Eigen::Matrix3d& F);
+  Eigen::Matrix3d increment(const Eigen::Matrix3d& dF) const;
+
+ private:
+  const Material& material_;
+  ElementKind kind_;
+  material::NeoHookeanLinearisation neo_hookean_;  // tled, anp
+  material::CorotatedLinearisation corotated_;     // corotational
+};
 
 }  // namespace softsim::fem

@@ -6,7 +6,6 @@
 
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_response.hpp"
-#include "softsim/fem/nodal_pressure.hpp"
 
 namespace softsim::fem {
 
@@ -115,12 +114,8 @@ void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
       slot[original_[i]] = i;
       volume[original_[i]] = volume_[i];
     }
-  const NodalVolumes nv = nodal_volumes(mesh, kinds_, volume);
-  anp_begin_ = nv.begin;
-  anp_weight_ = nv.weight;
-  anp_node_volume_ = nv.volume;
-  anp_slot_.resize(nv.element.size());
-  for (std::size_t p = 0; p < nv.element.size(); ++p) anp_slot_[p] = slot[nv.element[p]];
+  anp_ = nodal_volumes(mesh, kinds_, volume);
+  for (int& e : anp_.element) e = slot[e];
   volume_ratio_.assign(stride_, 1.0);
   nodal_pressure_.assign(3 * static_cast<std::size_t>(num_nodes_), 0.0);
 }
@@ -136,27 +131,22 @@ void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& s
 
 void ElementSet::update_nodal_pressures(int begin, int end) {
   const double kappa = material_.volumetric_modulus;
-  for (int a = begin; a < end; ++a) {
-    if (anp_begin_[a] == anp_begin_[a + 1]) continue;
-    double J = 0;  // J_a = Σ w J_e in a fixed order (nodal_pressure.hpp)
-    for (int p = anp_begin_[a]; p < anp_begin_[a + 1]; ++p) J += anp_weight_[p] * volume_ratio_[anp_slot_[p]];
-    nodal_pressure_[3 * static_cast<std::size_t>(a)] = kappa * (J - 1.0);
-  }
+  for (int a = begin; a < end; ++a)
+    if (anp_.has_elements(a))
+      nodal_pressure_[3 * static_cast<std::size_t>(a)] = kappa * (nodal_volume_ratio(anp_, a, volume_ratio_.data()) - 1.0);
 }
 
 double ElementSet::nodal_volumetric_energy(const double* u) const {
   if (!has_nodal_pressure()) return 0.0;
   std::vector<double> J(stride_, 1.0);
   for (int i = 0; i < stride_; ++i)
-    if (original_[i] >= 0 && kinds_[original_[i]] == ElementKind::anp)
-      J[i] = deformation_gradient(shape(i), corners(i, u)).determinant();
+    if (original_[i] >= 0 && kinds_[original_[i]] == ElementKind::anp) J[i] = volume_ratio(shape(i), corners(i, u));
   const double kappa = material_.volumetric_modulus;
   double w = 0;
   for (int a = 0; a < num_nodes_; ++a) {
-    if (anp_begin_[a] == anp_begin_[a + 1]) continue;
-    double Ja = 0;
-    for (int p = anp_begin_[a]; p < anp_begin_[a + 1]; ++p) Ja += anp_weight_[p] * J[anp_slot_[p]];
-    w += anp_node_volume_[a] * 0.5 * kappa * (Ja - 1.0) * (Ja - 1.0);
+    if (!anp_.has_elements(a)) continue;
+    const double Ja = nodal_volume_ratio(anp_, a, J.data());
+    w += anp_.volume[a] * 0.5 * kappa * (Ja - 1.0) * (Ja - 1.0);
   }
   return w;
 }
@@ -345,7 +335,7 @@ void ElementSet::energies(const double* u, int begin, int end, double* energy, d
     }
     const TetShape sh = shape(i);
     const Corners c = corners(i, u);
-    const double J = deformation_gradient(sh, c).determinant();
+    const double J = volume_ratio(sh, c);
     if (J < min_j) {
       min_j = J;
       min_j_element = e;

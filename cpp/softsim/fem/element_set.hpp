@@ -28,6 +28,7 @@
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_kind.hpp"
 #include "softsim/fem/linear_rows.hpp"
+#include "softsim/fem/nodal_volumes.hpp"
 #include "softsim/fem/tet_geometry.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
@@ -153,10 +154,10 @@ class ElementSet {
   AlignedVector<double> volume_;
   AlignedVector<double> buffer_;   // 12 × stride corner forces
   AlignedVector<double> scratch_;  // per slot: what a kernel's fix-up pass decides on (J, polar convergence)
-  // ANP: det F per slot, node → (slot, weight) lists, nodal volumes, and p_a at index 3a.
+  // ANP: det F per slot, the node → (element, weight) lists with elements given by their slot,
+  // and p_a at index 3a.
   AlignedVector<double> volume_ratio_;
-  std::vector<int> anp_begin_, anp_slot_;
-  std::vector<double> anp_weight_, anp_node_volume_;
+  NodalVolumes anp_;
   AlignedVector<double> nodal_pressure_;
   // Assembled linear rows and, per node, the row force of the current element phase.
   LinearStiffnessRows linear_rows_;

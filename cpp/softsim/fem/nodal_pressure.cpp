@@ -7,31 +7,6 @@
 
 namespace softsim::fem {
 
-NodalVolumes nodal_volumes(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds,
-                           const std::vector<double>& element_volume) {
-  const int n = mesh.num_nodes();
-  NodalVolumes nv;
-  nv.begin.assign(n + 1, 0);
-  nv.volume.assign(n, 0.0);
-  for (int e = 0; e < mesh.num_tets(); ++e)
-    if (kinds[e] == ElementKind::anp)
-      for (int a : mesh.tets[e]) {
-        ++nv.begin[a + 1];
-        nv.volume[a] += 0.25 * element_volume[e];
-      }
-  for (int a = 0; a < n; ++a) nv.begin[a + 1] += nv.begin[a];
-  nv.element.resize(nv.begin[n]);
-  nv.weight.resize(nv.begin[n]);
-  std::vector<int> fill(nv.begin.begin(), nv.begin.end() - 1);
-  for (int e = 0; e < mesh.num_tets(); ++e)
-    if (kinds[e] == ElementKind::anp)
-      for (int a : mesh.tets[e]) {
-        nv.element[fill[a]] = e;
-        nv.weight[fill[a]++] = 0.25 * element_volume[e] / nv.volume[a];
-      }
-  return nv;
-}
-
 Eigen::Matrix3d cofactor(const Eigen::Matrix3d& F) {
   Eigen::Matrix3d c;
   c.col(0) = F.col(1).cross(F.col(2));
@@ -54,33 +29,34 @@ NodalPressure::NodalPressure(const mesh::TetMesh& mesh, const std::vector<Elemen
   empty_ = nodal_.element.empty();
 }
 
-Eigen::Matrix3d NodalPressure::element_gradient(int e, const double* u) const {
-  Corners c;
-  for (int a = 0; a < 4; ++a) c[a] = Eigen::Vector3d(u[3 * tets_[e][a]], u[3 * tets_[e][a] + 1], u[3 * tets_[e][a] + 2]);
-  return deformation_gradient(shapes_[e], c);
-}
-
-double NodalPressure::element_volume_ratio(int e, const double* u) const {
-  return element_gradient(e, u).determinant();
+std::vector<Eigen::Matrix3d> NodalPressure::anp_gradients(const double* u) const {
+  std::vector<Eigen::Matrix3d> F(tets_.size());
+  for (std::size_t e = 0; e < tets_.size(); ++e)
+    if (kinds_[e] == ElementKind::anp) F[e] = deformation_gradient(shapes_[e], corner_displacements(tets_[e], u));
+  return F;
 }
 
 void NodalPressure::nodal_volume_ratios(const double* u, std::vector<double>& J) const {
-  const int n = static_cast<int>(nodal_.volume.size());
+  nodal_volume_ratios(anp_gradients(u), J);
+}
+
+void NodalPressure::nodal_volume_ratios(const std::vector<Eigen::Matrix3d>& F, std::vector<double>& J) const {
   std::vector<double> je(tets_.size(), 1.0);
   for (std::size_t e = 0; e < tets_.size(); ++e)
-    if (kinds_[e] == ElementKind::anp) je[e] = element_volume_ratio(static_cast<int>(e), u);
+    if (kinds_[e] == ElementKind::anp) je[e] = F[e].determinant();
+  const int n = static_cast<int>(nodal_.volume.size());
   J.assign(n, 1.0);
-  for (int a = 0; a < n; ++a) {
-    if (nodal_.begin[a] == nodal_.begin[a + 1]) continue;
-    double s = 0;
-    for (int p = nodal_.begin[a]; p < nodal_.begin[a + 1]; ++p) s += nodal_.weight[p] * je[nodal_.element[p]];
-    J[a] = s;
-  }
+  for (int a = 0; a < n; ++a)
+    if (nodal_.has_elements(a)) J[a] = nodal_volume_ratio(nodal_, a, je.data());
 }
 
 void NodalPressure::element_pressures(const double* u, std::vector<double>& pbar) const {
   std::vector<double> J;
   nodal_volume_ratios(u, J);
+  element_pressures(J, pbar);
+}
+
+void NodalPressure::element_pressures(const std::vector<double>& J, std::vector<double>& pbar) const {
   pbar.assign(tets_.size(), 0.0);
   for (std::size_t e = 0; e < tets_.size(); ++e)
     if (kinds_[e] == ElementKind::anp) {
@@ -92,11 +68,13 @@ void NodalPressure::element_pressures(const double* u, std::vector<double>& pbar
 
 void NodalPressure::add_forces(const double* u, Eigen::VectorXd& f) const {
   if (empty_) return;
-  std::vector<double> pbar;
-  element_pressures(u, pbar);
+  const std::vector<Eigen::Matrix3d> F = anp_gradients(u);
+  std::vector<double> J, pbar;
+  nodal_volume_ratios(F, J);
+  element_pressures(J, pbar);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
     if (kinds_[e] != ElementKind::anp) continue;
-    const Eigen::Matrix3d P = shapes_[e].volume * pbar[e] * cofactor(element_gradient(static_cast<int>(e), u));
+    const Eigen::Matrix3d P = shapes_[e].volume * pbar[e] * cofactor(F[e]);
     for (int a = 0; a < 4; ++a) f.segment<3>(3 * tets_[e][a]) += P * shapes_[e].grad[a];
   }
 }
@@ -105,6 +83,8 @@ double NodalPressure::energy(const double* u) const {
   if (empty_) return 0.0;
   std::vector<double> J;
   nodal_volume_ratios(u, J);
+  // Over every node (J = 1 adds nothing): the compiler vectorises this loop's products and adds
+  // them unfused, so it rounds differently from ElementSet's sum over the ANP nodes only.
   double w = 0;
   for (std::size_t a = 0; a < J.size(); ++a) w += nodal_.volume[a] * 0.5 * kappa_ * (J[a] - 1.0) * (J[a] - 1.0);
   return w;
@@ -145,14 +125,12 @@ void add_entry(Eigen::SparseMatrix<double>& K, int row, int col, double v) {
 void NodalPressure::add_tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
   if (empty_) return;
   const int m = static_cast<int>(tets_.size());
-  std::vector<Eigen::Matrix3d> F(m), cof(m);
+  const std::vector<Eigen::Matrix3d> F = anp_gradients(u);
+  std::vector<Eigen::Matrix3d> cof(m);
   for (int e = 0; e < m; ++e)
-    if (kinds_[e] == ElementKind::anp) {
-      F[e] = element_gradient(e, u);
-      cof[e] = cofactor(F[e]);
-    }
+    if (kinds_[e] == ElementKind::anp) cof[e] = cofactor(F[e]);
   std::vector<double> J;
-  nodal_volume_ratios(u, J);
+  nodal_volume_ratios(F, J);
   const int n = static_cast<int>(J.size());
   // Element term: ⁰V_e p̄_e d(cof F_e)[e_k ⊗ ∇N_b] ∇N_a.
   for (int e = 0; e < m; ++e) {
@@ -174,7 +152,7 @@ void NodalPressure::add_tangent(const double* u, Eigen::SparseMatrix<double>& K)
   std::vector<int> nodes;
   std::vector<Eigen::Vector3d> g;
   for (int a = 0; a < n; ++a) {
-    if (nodal_.begin[a] == nodal_.begin[a + 1]) continue;
+    if (!nodal_.has_elements(a)) continue;
     nodes.clear();
     g.clear();
     for (int p = nodal_.begin[a]; p < nodal_.begin[a + 1]; ++p) {

@@ -12,30 +12,20 @@
 // p_a = U'(J_a) = κ (J_a − 1) of its corners: one volumetric constraint per node, no locking.
 // Under a homogeneous deformation every J_a equals J_e and the element is plain TLED.
 //
-// This file holds the node ↔ element weights and a clear (serial) evaluation used by the static
-// solver's assembly and by the tests; the explicit engine has its own vectorised path
-// (element_set.hpp) built on the same weights.
+// This file holds a clear (serial) evaluation used by the static solver's assembly and by the
+// tests; the explicit engine has its own vectorised path (element_set.hpp). Both build on the
+// node ↔ element weights of nodal_volumes.hpp.
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 
 #include "softsim/fem/element_kind.hpp"
+#include "softsim/fem/nodal_volumes.hpp"
 #include "softsim/fem/tet_geometry.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::fem {
-
-// Node → incident ANP elements, with J_a = Σ weight · J_e.
-struct NodalVolumes {
-  std::vector<int> begin;      // n + 1 offsets into element / weight
-  std::vector<int> element;    // incident ANP elements of each node, ascending
-  std::vector<double> weight;  // ⁰V_e / (4 V_a)
-  std::vector<double> volume;  // V_a (0 for a node without ANP elements)
-};
-
-NodalVolumes nodal_volumes(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds,
-                           const std::vector<double>& element_volume);
 
 // cof F = J F⁻ᵀ = ∂J/∂F, and its directional derivative along dF.
 Eigen::Matrix3d cofactor(const Eigen::Matrix3d& F);
@@ -67,8 +57,11 @@ class NodalPressure {
   void add_tangent(const double* u, Eigen::SparseMatrix<double>& K) const;
 
  private:
-  double element_volume_ratio(int e, const double* u) const;
-  Eigen::Matrix3d element_gradient(int e, const double* u) const;
+  // F_e of every ANP element at u (the other entries are not set): each is formed once per call
+  // and serves both J_e and cof F_e.
+  std::vector<Eigen::Matrix3d> anp_gradients(const double* u) const;
+  void nodal_volume_ratios(const std::vector<Eigen::Matrix3d>& F, std::vector<double>& J) const;
+  void element_pressures(const std::vector<double>& J, std::vector<double>& pbar) const;
 
   std::vector<mesh::Tet> tets_;
   std::vector<ElementKind> kinds_;

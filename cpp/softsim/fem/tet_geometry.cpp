@@ -31,13 +31,19 @@ Eigen::Matrix3d deformation_gradient(const TetShape& shape, const Corners& u) {
   return F;
 }
 
-Corners corner_displacements(const mesh::TetMesh& mesh, int element, const double* u) {
+double volume_ratio(const TetShape& shape, const Corners& u) { return deformation_gradient(shape, u).determinant(); }
+
+Corners corner_displacements(const mesh::Tet& tet, const double* u) {
   Corners c;
   for (int a = 0; a < 4; ++a) {
-    const int n = mesh.tets[element][a];
+    const int n = tet[a];
     c[a] = Eigen::Vector3d(u[3 * n], u[3 * n + 1], u[3 * n + 2]);
   }
   return c;
+}
+
+Corners corner_displacements(const mesh::TetMesh& mesh, int element, const double* u) {
+  return corner_displacements(mesh.tets[element], u);
 }
 
 }  // namespace softsim::fem

@@ -24,8 +24,12 @@ TetShape tet_shape(const mesh::TetMesh& mesh, int element);
 
 // F = I + Σ_a u_a ⊗ ∇N_a from the corner displacements.
 Eigen::Matrix3d deformation_gradient(const TetShape& shape, const Corners& u);
+// The volume ratio J = det F (current over reference volume) of the reference (non-vectorised)
+// element functions, the static solver and the failure checks.
+double volume_ratio(const TetShape& shape, const Corners& u);
 
-// The corner displacements of element e from a nodal field of 3 n values (x, y, z per node).
+// The corner displacements of a tetrahedron from a nodal field of 3 n values (x, y, z per node).
+Corners corner_displacements(const mesh::Tet& tet, const double* u);
 Corners corner_displacements(const mesh::TetMesh& mesh, int element, const double* u);
 
 }  // namespace softsim::fem

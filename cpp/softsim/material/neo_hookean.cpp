@@ -51,6 +51,19 @@ Eigen::Matrix3d second_piola(const NeoHookean& law, const Eigen::Matrix3d& C) {
 
 Eigen::Matrix3d first_piola_increment(const NeoHookean& law, const Eigen::Matrix3d& F,
                                       const Eigen::Matrix3d& dF) {
+  return first_piola_increment(law, linearise(law, F), dF);
+}
+
+NeoHookeanLinearisation linearise(const NeoHookean& law, const Eigen::Matrix3d& F) {
+  NeoHookeanLinearisation at;
+  at.F = F;
+  if (law.form == NeoHookeanForm::decoupled) at.a = std::pow(F.determinant(), -2.0 / 3.0);
+  return at;
+}
+
+Eigen::Matrix3d first_piola_increment(const NeoHookean& law, const NeoHookeanLinearisation& at,
+                                      const Eigen::Matrix3d& dF) {
+  const Eigen::Matrix3d& F = at.F;
   const double J = F.determinant();
   const Eigen::Matrix3d Finv = F.inverse();
   const Eigen::Matrix3d FinvT = Finv.transpose();
@@ -64,7 +77,7 @@ Eigen::Matrix3d first_piola_increment(const NeoHookean& law, const Eigen::Matrix
     return law.mu * dF + dg * FinvT + g * dFinvT;
   }
   // P = μ a F + h F⁻ᵀ with a = J^(−2/3), h = −μ a I₁/3 + K J (J − 1).
-  const double a = std::pow(J, -2.0 / 3.0);
+  const double a = at.a;
   const double da = -2.0 / 3.0 * a * trFinvdF;
   const double I1 = F.squaredNorm();
   const double dI1 = 2.0 * (F.array() * dF.array()).sum();

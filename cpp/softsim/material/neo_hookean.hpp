@@ -45,6 +45,19 @@ Eigen::Matrix3d second_piola(const NeoHookean& law, const Eigen::Matrix3d& C);
 Eigen::Matrix3d first_piola_increment(const NeoHookean& law, const Eigen::Matrix3d& F,
                                       const Eigen::Matrix3d& dF);
 
+// What dP(F)[·] computes of F alone once for many increments at one F (the 12 columns of an
+// element tangent): the decoupled form's J^(−2/3). J and F⁻¹ stay in each increment: taken from
+// outside, they change how the compiler fuses the increment's multiply-adds, and with it the
+// last bits of dP.
+struct NeoHookeanLinearisation {
+  Eigen::Matrix3d F;
+  double a = 0;  // decoupled: J^(−2/3)
+};
+NeoHookeanLinearisation linearise(const NeoHookean& law, const Eigen::Matrix3d& F);
+// The same dP as first_piola_increment(law, F, dF), from the set-up at F.
+Eigen::Matrix3d first_piola_increment(const NeoHookean& law, const NeoHookeanLinearisation& at,
+                                      const Eigen::Matrix3d& dF);
+
 // The split W = W_iso(F) + U(J) with U = κ/2 (J − 1)², used by the average-nodal-pressure
 // element (fem/nodal_pressure.hpp), which evaluates U at the nodes instead of the element:
 //   paper      W_iso = μ/2 (I₁ − 3) − μ ln J,  κ = λ

@@ -42,18 +42,30 @@ double corotated_energy_density(const LameParameters& l, const Eigen::Matrix3d& 
 
 Eigen::Matrix3d corotated_first_piola_increment(const LameParameters& l, const Eigen::Matrix3d& F,
                                                 const Eigen::Matrix3d& dF) {
+  return corotated_first_piola_increment(l, corotated_linearise(F), dF);
+}
+
+CorotatedLinearisation corotated_linearise(const Eigen::Matrix3d& F) {
   const Polar p = polar_decomposition(F);
-  const Eigen::Matrix3d A = p.R.transpose() * dF;
+  CorotatedLinearisation at;
+  at.R = p.R;
+  const Eigen::Matrix3d G = p.S.trace() * kI - p.S;
+  at.Ginv = G.inverse();
+  at.trE = p.S.trace() - 3.0;
+  return at;
+}
+
+Eigen::Matrix3d corotated_first_piola_increment(const LameParameters& l, const CorotatedLinearisation& at,
+                                                const Eigen::Matrix3d& dF) {
+  const Eigen::Matrix3d A = at.R.transpose() * dF;
   const Eigen::Matrix3d K = A - A.transpose();  // = W S + S W
   const Eigen::Vector3d k(K(2, 1), K(0, 2), K(1, 0));
-  const Eigen::Matrix3d G = p.S.trace() * kI - p.S;
-  const Eigen::Vector3d w = G.inverse() * k;
+  const Eigen::Vector3d w = at.Ginv * k;
   Eigen::Matrix3d W;
   W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
-  const Eigen::Matrix3d dR = p.R * W;
-  const double trE = p.S.trace() - 3.0;
+  const Eigen::Matrix3d dR = at.R * W;
   // P = 2μ (F − R) + λ tr(S − I) R;  tr(dS) = tr(Rᵀ dF) because tr(W S) = 0.
-  return 2.0 * l.mu * (dF - dR) + l.lambda * (A.trace() * p.R + trE * dR);
+  return 2.0 * l.mu * (dF - dR) + l.lambda * (A.trace() * at.R + at.trE * dR);
 }
 
 }  // namespace softsim::material

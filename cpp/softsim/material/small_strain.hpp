@@ -26,4 +26,16 @@ double corotated_energy_density(const LameParameters& l, const Eigen::Matrix3d& 
 Eigen::Matrix3d corotated_first_piola_increment(const LameParameters& l, const Eigen::Matrix3d& F,
                                                 const Eigen::Matrix3d& dF);
 
+// What the corotated dP(F)[·] needs of F alone, for many increments at one F (the 12 columns of
+// an element tangent): the rotation R of F = R S (the polar decomposition) and (tr(S) I − S)⁻¹.
+struct CorotatedLinearisation {
+  Eigen::Matrix3d R;
+  Eigen::Matrix3d Ginv;  // (tr(S) I − S)⁻¹
+  double trE = 0;        // tr(S − I)
+};
+CorotatedLinearisation corotated_linearise(const Eigen::Matrix3d& F);
+// The same dP as corotated_first_piola_increment(l, F, dF), from the set-up at F.
+Eigen::Matrix3d corotated_first_piola_increment(const LameParameters& l, const CorotatedLinearisation& at,
+                                                const Eigen::Matrix3d& dF);
+
 }  // namespace softsim::material
