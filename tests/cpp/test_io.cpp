@@ -9,6 +9,7 @@
 #include "softsim/io/errors.hpp"
 #include "softsim/io/json_reader.hpp"
 #include "softsim/io/mesh_artifact.hpp"
+#include "softsim/io/result_fields.hpp"
 #include "softsim/io/sha256.hpp"
 
 using namespace softsim;
@@ -91,6 +92,32 @@ TEST(Artifact, RoundTripAndSchemaCheck) {
   EXPECT_EQ(a.sha256(), io::sha256_file(path));
   EXPECT_THROW(io::Artifact::read(path, "other", 2), InputError);
   EXPECT_THROW(io::Artifact::read(path, "thing", 1), InputError);
+  std::filesystem::remove(path);
+}
+
+TEST(ResultFields, NodalDisplacementsReadBackAndMalformedFieldsNamePointerAndMesh) {
+  const auto path = (std::filesystem::temp_directory_path() / "softsim_result_fields.json").string();
+  const auto result = [&](const nlohmann::json& displacement) {
+    io::write_artifact(path, "dhd_result", 1, io::Provenance{}, {{"displacement", displacement}});
+    return io::Artifact::read(path, "dhd_result", 1);
+  };
+  EXPECT_EQ(io::read_nodal_displacements(result({{1, 2, 3}, {4, 5, 6}}), 2), (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  const auto message = [&](const nlohmann::json& displacement, int nodes, const std::string& mesh) {
+    try {
+      io::read_nodal_displacements(result(displacement), nodes, mesh);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string wrong_count = message({{1, 2, 3}}, 2, "mesh.json");
+  EXPECT_NE(wrong_count.find("/payload/displacement"), std::string::npos) << wrong_count;
+  EXPECT_NE(wrong_count.find("one displacement per mesh node (2) of mesh.json"), std::string::npos) << wrong_count;
+  for (const nlohmann::json& bad_row : {nlohmann::json{1, 2}, nlohmann::json(7.0)}) {
+    const std::string m = message({{1, 2, 3}, bad_row}, 2, "");
+    EXPECT_NE(m.find("/payload/displacement/1"), std::string::npos) << m;
+    EXPECT_NE(m.find("[ux, uy, uz]"), std::string::npos) << m;
+  }
   std::filesystem::remove(path);
 }
 

@@ -5,6 +5,7 @@
 
 #include "softsim/io/artifact.hpp"
 #include "softsim/io/mesh_artifact.hpp"
+#include "softsim/io/result_fields.hpp"
 
 namespace softsim::fit {
 
@@ -51,18 +52,13 @@ Dataset read_static_series(const StaticSeries& spec) {
   (ds.nodes.rowwise() - spec.loaded_point.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
   ds.loaded_node = static_cast<int>(nearest);
   for (const StaticCase& sc : spec.cases) {
-    const io::Artifact a = io::Artifact::read(sc.result, "dhd_result", 1);
-    const io::JsonReader disp = a.payload().at("displacement");
-    if (disp.size() != static_cast<std::size_t>(mesh.num_nodes()))
-      disp.fail("one displacement per mesh node (" + std::to_string(mesh.num_nodes()) + ") of " + spec.mesh);
+    const std::vector<double> u =
+        io::read_nodal_displacements(io::Artifact::read(sc.result, "dhd_result", 1), mesh.num_nodes(), spec.mesh);
     LoadCase lc;
     lc.force = sc.force;
     lc.displacement.resize(ds.nodes.rows(), 3);
-    for (std::size_t j = 0; j < surface.size(); ++j) {
-      const io::JsonReader row = disp[static_cast<std::size_t>(surface[j])];
-      if (!row.raw().is_array() || row.raw().size() != 3) row.fail("[ux, uy, uz]");
-      for (int c = 0; c < 3; ++c) lc.displacement(static_cast<Eigen::Index>(j), c) = row[c].as_double();
-    }
+    for (std::size_t j = 0; j < surface.size(); ++j)
+      for (int c = 0; c < 3; ++c) lc.displacement(static_cast<Eigen::Index>(j), c) = u[3 * static_cast<std::size_t>(surface[j]) + c];
     ds.cases.push_back(std::move(lc));
   }
   return ds;

@@ -5,6 +5,7 @@
 
 #include "softsim/dynamics/node_selection.hpp"
 #include "softsim/io/artifact.hpp"
+#include "softsim/io/result_fields.hpp"
 
 namespace softsim::hybrid {
 
@@ -158,16 +159,8 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
       s.linear_fraction = p->get_double("linear_fraction");
       p->require(s.linear_fraction >= 0 && s.linear_fraction <= 1, "linear_fraction", "a share in [0, 1]");
     }
-    const io::Artifact ref = io::Artifact::read(c.strain_reference, "dhd_result", 1);
-    const io::JsonReader disp = ref.payload().at("displacement");
-    if (disp.size() != static_cast<std::size_t>(mesh.num_nodes()))
-      disp.fail("one displacement per mesh node (" + std::to_string(mesh.num_nodes()) + ")");
-    s.reference_displacement.resize(3 * disp.size());
-    for (std::size_t i = 0; i < disp.size(); ++i) {
-      const io::JsonReader d = disp[i];
-      if (d.size() != 3) d.fail("[ux, uy, uz]");
-      for (std::size_t k = 0; k < 3; ++k) s.reference_displacement[3 * i + k] = d[k].as_double();
-    }
+    s.reference_displacement =
+        io::read_nodal_displacements(io::Artifact::read(c.strain_reference, "dhd_result", 1), mesh.num_nodes());
   }
   p->reject_unknown();
   const bool wants_tled = s.kind != PartitionKind::uniform || s.uniform_element == fem::ElementKind::tled ||
