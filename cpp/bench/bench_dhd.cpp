@@ -21,16 +21,13 @@
 #include <cmath>
 #include <memory>
 
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-#include <immintrin.h>
-#endif
-
 #include "softsim/dynamics/explicit_solver.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/fem/element_response.hpp"
 #include "softsim/fem/element_set.hpp"
 #include "softsim/fem/linear_rows.hpp"
+#include "softsim/fem/linear_rows_avx512.hpp"
 #include "softsim/hybrid/dhd_run.hpp"
 #include "softsim/hybrid/partition.hpp"
 #include "softsim/mesh/cuboid.hpp"
@@ -218,21 +215,22 @@ void BM_LinearRowsMemoryFloor(benchmark::State& state) {
 }
 BENCHMARK(BM_LinearRowsMemoryFloor)->Unit(benchmark::kMicrosecond);
 
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-// What single-precision stiffness values would buy: the engine's kernel with each block's first
-// eight values stored as floats (32 bytes, widened by one conversion) and K_22 as a float, so
-// the rows stream 45 % of the bytes. The engine keeps double precision (the paper's benchmark is
-// in double precision); this measures the option. Counter: the largest force difference to the
-// double-precision rows relative to the largest force (the price in accuracy).
+#ifdef SOFTSIM_ROWS_AVX512
+// What single-precision stiffness values would buy: the engine's kernel (rows_avx512::row) over
+// the same blocks with each value stored as a float (the first eight of a block in 32 bytes,
+// widened by one conversion), so the rows stream 45 % of the bytes. The engine keeps double
+// precision (the paper's benchmark is in double precision); this measures the option. Counter:
+// the largest force difference to the double-precision rows relative to the largest force (the
+// price in accuracy).
 void BM_LinearRowsSingleValues(benchmark::State& state) {
   const auto& m = paper_mesh();
   const fem::LinearStiffnessRows rows(m, std::vector<ElementKind>(m.num_tets(), ElementKind::linear),
                                       fem::Material::make(kPaper, material::NeoHookeanForm::paper));
   const int n = m.num_nodes(), blocks = rows.num_blocks();
-  std::vector<int> first(n + 1), neighbour(blocks);
+  std::vector<int> first(n + 1, blocks), neighbour(blocks);
   fem::AlignedVector<float> values(8 * static_cast<std::size_t>(blocks));
   std::vector<float> k22(blocks);
-  for (int a = 0; a <= n; ++a) first[a] = a < n ? rows.first_block(a) : blocks;
+  for (int a = 0; a < n; ++a) first[a] = rows.first_block(a);
   for (int p = 0; p < blocks; ++p) {
     neighbour[p] = 3 * rows.column_node(p);
     for (int q = 0; q < 8; ++q) values[8 * static_cast<std::size_t>(p) + q] = static_cast<float>(rows.value(p, q / 3, q % 3));
@@ -240,35 +238,10 @@ void BM_LinearRowsSingleValues(benchmark::State& state) {
   }
   const std::vector<double> u = deformed_state();
   std::vector<double> f(u.size());
-  const auto product = [&] {
-    const __m512i spread = _mm512_set_epi64(1, 0, 2, 1, 0, 2, 1, 0);
-    for (int a = 0; a < n; ++a) {
-      __m512d c0 = _mm512_setzero_pd(), c1 = c0, c2 = c0, c3 = c0;
-      __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0, s3 = s0;
-      const auto add_block = [&](int p, __m512d& c, __m256d& s) {
-        const __m256d x = _mm256_maskz_loadu_pd(0x7, u.data() + neighbour[p]);
-        c = _mm512_fmadd_pd(_mm512_cvtps_pd(_mm256_load_ps(values.data() + 8 * static_cast<std::size_t>(p))),
-                            _mm512_permutexvar_pd(spread, _mm512_castpd256_pd512(x)), c);
-        s = _mm256_fmadd_pd(_mm256_set1_pd(k22[p]), x, s);
-      };
-      int p = first[a];
-      for (; p + 3 < first[a + 1]; p += 4) {
-        add_block(p, c0, s0);
-        add_block(p + 1, c1, s1);
-        add_block(p + 2, c2, s2);
-        add_block(p + 3, c3, s3);
-      }
-      for (; p < first[a + 1]; ++p) add_block(p, c0, s0);
-      alignas(64) double t[8];
-      _mm512_store_pd(t, _mm512_add_pd(_mm512_add_pd(c0, c1), _mm512_add_pd(c2, c3)));
-      const __m256d sum = _mm256_add_pd(_mm256_add_pd(s0, s1), _mm256_add_pd(s2, s3));
-      f[3 * a] = t[0] + t[1] + t[2];
-      f[3 * a + 1] = t[3] + t[4] + t[5];
-      f[3 * a + 2] = t[6] + t[7] + _mm_cvtsd_f64(_mm256_extractf128_pd(sum, 1));
-    }
-  };
   for (auto _ : state) {
-    product();
+    for (int a = 0; a < n; ++a)
+      fem::rows_avx512::row(values.data() + 8 * static_cast<std::size_t>(first[a]), k22.data() + first[a],
+                            neighbour.data() + first[a], first[a + 1] - first[a], u.data(), f.data() + 3 * a);
     benchmark::DoNotOptimize(f.data());
   }
   std::vector<int> nodes(n);

@@ -122,7 +122,9 @@ class ElementSet {
   // Estimated cost of a tile's elements, linear rows and ready nodes (units of one TLED element).
   double tile_cost(int tile) const;
   static constexpr double kNodeCost = 2.5;
-  static constexpr double kLinearBlockCost = 0.19;  // one 3 × 3 block of a linear row (bench_dhd)
+  // One 3 × 3 block of a linear row: bench_dhd's BM_LinearRows per block over BM_Kernel's TLED
+  // time per element.
+  static constexpr double kLinearBlockCost = 0.17;
 
   // Reference shape of internal slot i (gradients and volume as stored).
   TetShape shape(int internal) const;

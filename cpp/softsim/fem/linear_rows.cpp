@@ -4,12 +4,8 @@
 #include <cstring>
 
 #include "softsim/fem/element_response.hpp"
+#include "softsim/fem/linear_rows_avx512.hpp"
 #include "softsim/fem/tet_geometry.hpp"
-
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-#include <immintrin.h>
-#define SOFTSIM_ROWS_AVX512 1
-#endif
 
 namespace softsim::fem {
 
@@ -84,8 +80,8 @@ inline Vec8 load8(const double* p) {
   return v;
 }
 
-[[gnu::always_inline]] inline void portable_row(const double* block, const double* k22, const int* neighbour, int count, const double* u,
-                         double* f) {
+[[gnu::always_inline]] inline void portable_row(const double* block, const double* k22, const int* neighbour,
+                                                int count, const double* u, double* f) {
   Vec8 even = {0, 0, 0, 0, 0, 0, 0, 0}, odd = even;
   double s0 = 0, s1 = 0;
   int p = 0;
@@ -107,48 +103,6 @@ inline Vec8 load8(const double* p) {
   f[1] = t[3] + t[4] + t[5];
   f[2] = t[6] + t[7] + (s0 + s1);
 }
-
-#ifdef SOFTSIM_ROWS_AVX512
-// A row's three sums from its accumulator: (t0 + t1 + t2, t3 + t4 + t5, t6 + t7 + k), written
-// with one masked store.
-inline void store_row_sums(__m512d t, double k, double* f) {
-  const __m512d kv = _mm512_castpd128_pd512(_mm_set_sd(k));
-  const __m512d first = _mm512_permutexvar_pd(_mm512_set_epi64(0, 0, 0, 0, 0, 6, 3, 0), t);
-  const __m512d second = _mm512_permutexvar_pd(_mm512_set_epi64(0, 0, 0, 0, 0, 7, 4, 1), t);
-  const __m512d third = _mm512_permutex2var_pd(t, _mm512_set_epi64(0, 0, 0, 0, 0, 8, 5, 2), kv);
-  _mm256_mask_storeu_pd(f, 0x7, _mm512_castpd512_pd256(_mm512_add_pd(_mm512_add_pd(first, second), third)));
-}
-
-// One row, four blocks per iteration into four accumulators (the multiply-add latency would
-// otherwise bound the loop). A neighbour's displacement is one masked load (u0 u1 u2 0): the
-// masked-off lane is never read, so the last node of the mesh needs no padding. One permute
-// spreads it as (u0 u1 u2 u0 u1 u2 u0 u1) against the block's first eight values; K_22 u2 comes
-// from a 4-wide multiply-add of the broadcast K_22 with the same load, whose third lane is kept.
-// This is fewer instructions per block than separate u2 loads and scalar sums (the row product
-// is bound by instructions per block once the blocks stream from the cache).
-[[gnu::always_inline]] inline void avx512_row(const double* block, const double* k22, const int* neighbour, int count, const double* u,
-                       double* f) {
-  const __m512i spread = _mm512_set_epi64(1, 0, 2, 1, 0, 2, 1, 0);
-  __m512d c0 = _mm512_setzero_pd(), c1 = c0, c2 = c0, c3 = c0;
-  __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0, s3 = s0;
-  const auto add_block = [&](int p, __m512d& c, __m256d& s) {
-    const __m256d x = _mm256_maskz_loadu_pd(0x7, u + neighbour[p]);
-    c = _mm512_fmadd_pd(_mm512_load_pd(block + 8 * p), _mm512_permutexvar_pd(spread, _mm512_castpd256_pd512(x)), c);
-    s = _mm256_fmadd_pd(_mm256_broadcast_sd(k22 + p), x, s);
-  };
-  int p = 0;
-  for (; p + 3 < count; p += 4) {
-    add_block(p, c0, s0);
-    add_block(p + 1, c1, s1);
-    add_block(p + 2, c2, s2);
-    add_block(p + 3, c3, s3);
-  }
-  for (; p < count; ++p) add_block(p, c0, s0);
-  const __m256d s = _mm256_add_pd(_mm256_add_pd(s0, s1), _mm256_add_pd(s2, s3));
-  store_row_sums(_mm512_add_pd(_mm512_add_pd(c0, c1), _mm512_add_pd(c2, c3)),
-                 _mm_cvtsd_f64(_mm256_extractf128_pd(s, 1)), f);
-}
-#endif
 
 }  // namespace
 
@@ -172,7 +126,8 @@ void LinearStiffnessRows::multiply_rows(const int* nodes_begin, const int* nodes
                                         Kernel kernel) const {
 #ifdef SOFTSIM_ROWS_AVX512
   if (kernel == Kernel::best)
-    return for_each_row(nodes_begin, nodes_end, u, f, [](auto... row) __attribute__((always_inline)) { avx512_row(row...); });
+    return for_each_row(nodes_begin, nodes_end, u, f,
+                        [](auto... row) __attribute__((always_inline)) { rows_avx512::row(row...); });
 #else
   (void)kernel;
 #endif

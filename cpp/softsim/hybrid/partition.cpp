@@ -26,7 +26,7 @@ std::vector<Eigen::Vector3d> element_centroids(const mesh::TetMesh& mesh) {
 namespace {
 
 // Each strategy's operational set: one flag per element, true for the nonlinear kind.
-
+//
 // Exactly round(r · m) elements are non-operational: those with the largest `key`; ties go to
 // the lower element index.
 std::vector<char> operational_by_rank(const std::vector<double>& key, double linear_fraction) {
