@@ -19,8 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
+from pipeline.config_reader import ConfigError, ConfigReader
 from pipeline.stages.calculix_ccx import (
-    CalculixNumericalError, ConfigError, ConfigReader, ccx_version, fmt, last_block, mesh_lines,
+    CalculixNumericalError, ccx_version, fmt, last_block, mesh_lines,
     nset_lines, parse_dat, run_deck, section_and_step_lines, sorted_rows, step_statistics)
 from pipeline.stages.calculix_scene import Boundary, read_boundary, read_material
 

@@ -18,9 +18,10 @@ import time
 
 import numpy as np
 
+from pipeline.config_reader import ConfigReader
 from pipeline.stages.calculix import read_analysis
 from pipeline.stages.calculix_ccx import (
-    CalculixNumericalError, ConfigReader, ccx_version, fmt, last_block, mesh_lines, nset_lines, parse_dat,
+    CalculixNumericalError, ccx_version, fmt, last_block, mesh_lines, nset_lines, parse_dat,
     run_deck, section_and_step_lines, sorted_rows, step_statistics)
 from pipeline.stages.calculix_scene import read_material
 

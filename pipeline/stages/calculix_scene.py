@@ -18,7 +18,7 @@ solver does.
 """
 import numpy as np
 
-from pipeline.stages.calculix_ccx import ConfigReader
+from pipeline.config_reader import ConfigReader
 
 # 000 §3.1: the defaults dhd_sim uses too.
 DEFAULT_E = 5000.0

@@ -17,7 +17,8 @@ bounding box per axis: 0 is the minimum, 1 the maximum, values outside [0, 1] li
 "boundary_only" (default false) restricts a selector to nodes of the boundary triangles.
 
 The mesh artifact is written again with the new sets; a name the mesh already has, or a set
-that selects no node, is a config error. For every new set the payload's "source.node_sets"
+that selects no node, is a config error (pipeline.config_reader.ConfigError, naming the JSON
+pointer). For every new set the payload's "source.node_sets"
 records the count, the centroid and, for boundary nodes, the mean outward normal (area-weighted
 normals of the incident boundary triangles), so a report can check that a push is inward.
 """
@@ -26,22 +27,11 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.artifacts import read_artifact, write_artifact
+from pipeline.config_reader import ConfigReader
 
 TOOL = "pipeline.stages.dhd_node_sets"
 MESH_SCHEMA = "tet_mesh"
-SELECTORS = {"half_space": {"normal"}, "sphere": {"radius"}, "nearest": {"count"}}
-COMMON_KEYS = {"select", "point", "point_in_box", "boundary_only"}
-
-
-class NodeSetConfigError(ValueError):
-    """A bad stage config: names the key and what was expected."""
-
-
-def _vec3(value, where):
-    if not (isinstance(value, (list, tuple)) and len(value) == 3
-            and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)):
-        raise NodeSetConfigError(f"{where}: expected [x, y, z] numbers, got {value!r}")
-    return np.asarray(value, dtype=float)
+SELECTORS = ("half_space", "sphere", "nearest")
 
 
 def boundary_nodes(boundary: np.ndarray, n_nodes: int) -> np.ndarray:
@@ -63,52 +53,39 @@ def vertex_normals(nodes: np.ndarray, boundary: np.ndarray) -> np.ndarray:
     return np.divide(n, length, out=np.zeros_like(n), where=length > 0)
 
 
-def resolve_point(spec: dict, nodes: np.ndarray, where: str) -> np.ndarray:
-    has_abs, has_box = "point" in spec, "point_in_box" in spec
-    if has_abs == has_box:
-        raise NodeSetConfigError(f"{where}: expected exactly one of \"point\" and \"point_in_box\"")
-    if has_abs:
-        return _vec3(spec["point"], f"{where}/point")
+def resolve_point(spec: ConfigReader, nodes: np.ndarray) -> np.ndarray:
+    if spec.has("point") == spec.has("point_in_box"):
+        spec.fail('exactly one of "point" and "point_in_box"')
+    if spec.has("point"):
+        return np.asarray(spec.vector("point", 3))
     lo, hi = nodes.min(axis=0), nodes.max(axis=0)
-    return lo + _vec3(spec["point_in_box"], f"{where}/point_in_box") * (hi - lo)
+    return lo + np.asarray(spec.vector("point_in_box", 3)) * (hi - lo)
 
 
-def select(spec: dict, nodes: np.ndarray, boundary: np.ndarray, where: str = "") -> np.ndarray:
-    """Sorted node indices the selector picks."""
-    if not isinstance(spec, dict):
-        raise NodeSetConfigError(f"{where}: expected an object")
-    kind = spec.get("select")
-    if kind not in SELECTORS:
-        raise NodeSetConfigError(f"{where}/select: expected one of {sorted(SELECTORS)}, got {kind!r}")
-    unknown = sorted(set(spec) - COMMON_KEYS - SELECTORS[kind])
-    if unknown:
-        raise NodeSetConfigError(f"{where}/{unknown[0]}: unknown key for selector {kind!r}")
-    only_boundary = spec.get("boundary_only", False)
-    if not isinstance(only_boundary, bool):
-        raise NodeSetConfigError(f"{where}/boundary_only: expected true or false")
+def select(spec, nodes: np.ndarray, boundary: np.ndarray, where: str = "") -> np.ndarray:
+    """Sorted node indices the selector picks (`spec` a dict, `where` its JSON pointer)."""
+    r = ConfigReader(spec, where).require_object()
+    kind = r.choice("select", SELECTORS)
+    only_boundary = r.boolean("boundary_only", default=False)
     candidates = np.flatnonzero(boundary_nodes(boundary, len(nodes))) if only_boundary \
         else np.arange(len(nodes))
-    p = resolve_point(spec, nodes, where)
+    p = resolve_point(r, nodes)
     x = nodes[candidates]
     if kind == "half_space":
-        normal = _vec3(spec.get("normal"), f"{where}/normal")
+        normal = np.asarray(r.vector("normal", 3))
         if not np.linalg.norm(normal) > 0:
-            raise NodeSetConfigError(f"{where}/normal: expected a non-zero vector")
+            r.fail("a non-zero vector", "normal")
         picked = candidates[(x - p) @ normal >= 0.0]
     elif kind == "sphere":
-        radius = spec.get("radius")
-        if not isinstance(radius, (int, float)) or isinstance(radius, bool) or not radius > 0:
-            raise NodeSetConfigError(f"{where}/radius: expected a positive number (m)")
-        picked = candidates[np.linalg.norm(x - p, axis=1) <= radius]
+        picked = candidates[np.linalg.norm(x - p, axis=1) <= r.number("radius", positive=True)]
     else:
-        count = spec.get("count", 1)
-        if not isinstance(count, int) or isinstance(count, bool) or count < 1:
-            raise NodeSetConfigError(f"{where}/count: expected a positive integer")
+        count = r.integer("count", default=1, minimum=1)
         d = np.linalg.norm(x - p, axis=1)
         order = np.lexsort((candidates, d))  # nearest first, ties by node index
         picked = candidates[order[:count]]
+    r.reject_unknown()  # a key of another selector is unknown here
     if len(picked) == 0:
-        raise NodeSetConfigError(f"{where}: the selector picks no node")
+        r.fail("a selector that picks at least one node")
     return np.sort(picked)
 
 
@@ -122,10 +99,10 @@ def add_node_sets(payload: dict, sets: dict):
     new_sets = dict(existing)
     records = {}
     if not isinstance(sets, dict) or not sets:
-        raise NodeSetConfigError("/sets: expected a non-empty object of name -> selector")
+        ConfigReader(sets, "/sets").fail("a non-empty object of name -> selector")
     for name, spec in sets.items():
         if name in existing:
-            raise NodeSetConfigError(f"/sets/{name}: the mesh already has a node set of that name")
+            ConfigReader(sets, "/sets").fail("a name the mesh does not already use for a node set", name)
         ids = select(spec, nodes, boundary, f"/sets/{name}")
         new_sets[name] = [int(i) for i in ids]
         rec = {"count": int(len(ids)), "centroid": nodes[ids].mean(axis=0).tolist(),
@@ -146,14 +123,12 @@ def add_node_sets(payload: dict, sets: dict):
 
 def run(ctx):
     cfg = ctx.config
-    unknown = sorted(set(cfg) - {"mesh", "sets"})
-    if unknown:
-        raise NodeSetConfigError(f"/{unknown[0]}: unknown key (expected \"mesh\" and \"sets\")")
-    if "mesh" not in cfg:
-        raise NodeSetConfigError("/mesh: expected a tet_mesh artifact reference")
-    mesh_path = Path(ctx.root / cfg["mesh"])
+    r = ConfigReader(cfg).require_object()
+    mesh_path = Path(ctx.root / r.string("mesh"))
+    sets = r.raw("sets", required=True)
+    r.reject_unknown()
     payload = read_artifact(mesh_path, MESH_SCHEMA)["payload"]
-    out, records = add_node_sets(payload, cfg.get("sets"))
+    out, records = add_node_sets(payload, sets)
     for name, rec in records.items():
         ctx.log(f"{name}: {rec['count']} nodes around {np.round(rec['centroid'], 4).tolist()}")
     write_artifact(ctx.out_path, MESH_SCHEMA, 1, TOOL, cfg, out, inputs=[mesh_path])

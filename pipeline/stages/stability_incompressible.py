@@ -40,9 +40,10 @@ TOOLS = ("dhd_sim",)
 import numpy as np
 
 from pipeline.artifacts import write_artifact
+from pipeline.config_reader import ConfigReader
 from pipeline.stages import stability_fem as fem
 from pipeline.stages.calculix import read_analysis, solve_tet_mesh
-from pipeline.stages.calculix_ccx import (ConfigReader, elset_lines, fmt, last_block, mesh_lines, nset_lines, parse_dat,
+from pipeline.stages.calculix_ccx import (elset_lines, fmt, last_block, mesh_lines, nset_lines, parse_dat,
                                           run_deck, section_and_step_lines, sorted_rows)
 from pipeline.stages.calculix_plate import PlateMesh
 from pipeline.stages.calculix_scene import read_material

@@ -19,7 +19,8 @@ import pytest
 from conftest import run_tool, write_json
 from pipeline.stages.calculix import reaction_force, run_calculix, solve_tet_mesh
 from pipeline.stages.calculix_analytic import uniaxial_neo_hookean_decoupled
-from pipeline.stages.calculix_ccx import CalculixNumericalError, ConfigError, fmt, parse_dat
+from pipeline.config_reader import ConfigError
+from pipeline.stages.calculix_ccx import CalculixNumericalError, fmt, parse_dat
 from pipeline.stages.calculix_plate import PlateMesh, solve_plate
 
 pytestmark = pytest.mark.skipif(shutil.which("ccx") is None,

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from conftest import ROOT
+from pipeline.config_reader import ConfigError
 from pipeline.reports import dhd_common as common
 from pipeline.stages import dhd_node_sets as node_sets
 
@@ -245,9 +246,9 @@ def test_node_set_selectors(mesh):
     # boundary_only excludes interior nodes (an empty selection is an error).
     inner = node_sets.select({"select": "sphere", "point": [0.02, 0.02, 0.01], "radius": 0.001}, x, b)
     assert len(inner) == 1
-    with pytest.raises(node_sets.NodeSetConfigError):
+    with pytest.raises(ConfigError, match="/sets/inner: expected a selector that picks at least one node"):
         node_sets.select({"select": "sphere", "point": [0.02, 0.02, 0.01], "radius": 0.001,
-                          "boundary_only": True}, x, b)
+                          "boundary_only": True}, x, b, "/sets/inner")
 
 
 def test_vertex_normals_point_outward(mesh):
@@ -264,11 +265,20 @@ def test_add_node_sets_records_and_refuses_duplicates(mesh):
                                                        "boundary_only": True}})
     assert rec["push"]["count"] == 1 and np.allclose(rec["push"]["outward_normal"], [0, 0, 1])
     assert "push" in out["node_sets"] and "push" not in mesh["node_sets"]
-    with pytest.raises(node_sets.NodeSetConfigError):
+    with pytest.raises(ConfigError, match="/sets/push: expected a name the mesh does not already use"):
         node_sets.add_node_sets(out, {"push": {"select": "nearest", "point": [0, 0, 0]}})
-    with pytest.raises(node_sets.NodeSetConfigError):
+    with pytest.raises(ConfigError, match='/sets/bad: expected no key "colour"'):
         node_sets.add_node_sets(mesh, {"bad": {"select": "sphere", "point": [0, 0, 0], "radius": 1,
                                                "colour": 2}})
+    # A key of another selector is unknown to this one; a selector needs exactly one point.
+    with pytest.raises(ConfigError, match='/sets/bad: expected no key "radius"'):
+        node_sets.add_node_sets(mesh, {"bad": {"select": "nearest", "point": [0, 0, 0], "radius": 1}})
+    with pytest.raises(ConfigError, match='/sets/bad: expected exactly one of "point" and "point_in_box"'):
+        node_sets.add_node_sets(mesh, {"bad": {"select": "nearest", "point": [0, 0, 0], "point_in_box": [0, 0, 0]}})
+    with pytest.raises(ConfigError, match="/sets/bad/normal: expected a non-zero vector"):
+        node_sets.add_node_sets(mesh, {"bad": {"select": "half_space", "point": [0, 0, 0], "normal": [0, 0, 0]}})
+    with pytest.raises(ConfigError, match="/sets/bad/select: expected one of"):
+        node_sets.add_node_sets(mesh, {"bad": {"select": "cube", "point": [0, 0, 0]}})
 
 
 # --------------------------------------------------------------------------- pictures and summary
@@ -363,7 +373,7 @@ def test_node_set_stage_writes_a_mesh_the_engine_can_read(tmp_path, mesh):
     assert set(payload) <= {"units", "nodes", "tets", "boundary", "node_sets", "element_tags", "quality", "source"}
     assert len(payload["node_sets"]["push"]) == 1
     ctx.config["extra"] = 1
-    with pytest.raises(node_sets.NodeSetConfigError):
+    with pytest.raises(ConfigError, match='config: /: expected no key "extra"'):
         node_sets.run(ctx)
 
 

@@ -34,21 +34,21 @@ EnergySample ExplicitSolver::sample_energy(int n_done, const double* u_before, c
       gravity_work += mass_[i] * scene_.gravity[k] * u_mid[q];
     }
   bound_kinetic = bound;
-  std::vector<double> energy(elements_.padded_size(), 0.0);
-  std::vector<double> part_min(opt_.threads, 1e300);
-  std::vector<int> part_elem(opt_.threads, -1);
+  std::fill(part_min_j_.begin(), part_min_j_.end(), 1e300);
+  std::fill(part_min_j_element_.begin(), part_min_j_element_.end(), -1);
   parallel(opt_.threads, [&](int tid, int nthreads) {
     for (int p = tid; p < opt_.threads; p += nthreads)
-      elements_.energies(u_mid, element_ranges_[p], element_ranges_[p + 1], energy.data(), part_min[p], part_elem[p]);
+      elements_.energies(u_mid, element_ranges_[p], element_ranges_[p + 1], slot_energy_.data(),
+                         slot_volume_ratio_.data(), part_min_j_[p], part_min_j_element_[p]);
   });
   for (int p = 0; p < opt_.threads; ++p)
-    if (part_min[p] < min_j) {
-      min_j = part_min[p];
-      min_j_element = part_elem[p];
+    if (part_min_j_[p] < min_j) {
+      min_j = part_min_j_[p];
+      min_j_element = part_min_j_element_[p];
     }
   double strain = 0;
-  for (double e : energy) strain += e;
-  strain += elements_.nodal_volumetric_energy(u_mid);
+  for (double e : slot_energy_) strain += e;
+  strain += elements_.nodal_volumetric_energy(slot_volume_ratio_.data());
   s.kinetic = kinetic;
   s.strain = strain;
   s.external_work = external_work() + gravity_work;

@@ -48,8 +48,8 @@ struct MinJ {
 
 MinJ min_j_element(const fem::ElementSet& elements, const double* u) {
   MinJ m;
-  std::vector<double> scratch(elements.padded_size());
-  elements.energies(u, 0, elements.padded_size(), scratch.data(), m.j, m.element);
+  std::vector<double> energy(elements.padded_size()), volume_ratio(elements.padded_size());
+  elements.energies(u, 0, elements.padded_size(), energy.data(), volume_ratio.data(), m.j, m.element);
   return m;
 }
 
@@ -100,6 +100,10 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
   }
 
   element_ranges_ = elements_.balanced_ranges(opt_.threads);
+  slot_energy_.assign(elements_.padded_size(), 0.0);
+  slot_volume_ratio_.assign(elements_.padded_size(), 1.0);
+  part_min_j_.assign(opt_.threads, 1e300);
+  part_min_j_element_.assign(opt_.threads, -1);
   build_schedule();
 }
 

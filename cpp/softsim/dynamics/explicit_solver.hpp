@@ -127,6 +127,10 @@ class ExplicitSolver {
   std::vector<char> moving_;  // per constraint: prescribed value non-zero and ramped
   std::vector<LoadEntry> loads_;
   std::vector<int> element_ranges_;                    // per part, for the energy samples
+  // Scratch of the energy samples, sized once: strain energy and J per element slot, and per part
+  // the smallest J and its element.
+  std::vector<double> slot_energy_, slot_volume_ratio_, part_min_j_;
+  std::vector<int> part_min_j_element_;
   std::vector<int> tile_begin_;                        // per part: first tile
   std::vector<int> local_begin_, local_split_, local_nodes_;        // per tile: nodes updated right after it
   std::vector<int> deferred_begin_, deferred_split_, deferred_nodes_;  // per part: nodes updated after the barrier

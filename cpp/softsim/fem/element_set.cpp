@@ -136,16 +136,13 @@ void ElementSet::update_nodal_pressures(int begin, int end) {
       nodal_pressure_[3 * static_cast<std::size_t>(a)] = kappa * (nodal_volume_ratio(anp_, a, volume_ratio_.data()) - 1.0);
 }
 
-double ElementSet::nodal_volumetric_energy(const double* u) const {
+double ElementSet::nodal_volumetric_energy(const double* volume_ratio) const {
   if (!has_nodal_pressure()) return 0.0;
-  std::vector<double> J(stride_, 1.0);
-  for (int i = 0; i < stride_; ++i)
-    if (original_[i] >= 0 && kinds_[original_[i]] == ElementKind::anp) J[i] = volume_ratio(shape(i), corners(i, u));
   const double kappa = material_.volumetric_modulus;
   double w = 0;
   for (int a = 0; a < num_nodes_; ++a) {
     if (!anp_.has_elements(a)) continue;
-    const double Ja = nodal_volume_ratio(anp_, a, J.data());
+    const double Ja = nodal_volume_ratio(anp_, a, volume_ratio);
     w += anp_.volume[a] * 0.5 * kappa * (Ja - 1.0) * (Ja - 1.0);
   }
   return w;
@@ -325,17 +322,19 @@ Corners ElementSet::corners(int i, const double* u) const {
   return c;
 }
 
-void ElementSet::energies(const double* u, int begin, int end, double* energy, double& min_j,
-                          int& min_j_element) const {
+void ElementSet::energies(const double* u, int begin, int end, double* energy, double* volume_ratio,
+                          double& min_j, int& min_j_element) const {
   for (int i = begin; i < end; ++i) {
     const int e = original_[i];
     if (e < 0) {
       energy[i] = 0.0;
+      volume_ratio[i] = 1.0;
       continue;
     }
     const TetShape sh = shape(i);
     const Corners c = corners(i, u);
-    const double J = volume_ratio(sh, c);
+    const double J = fem::volume_ratio(sh, c);
+    volume_ratio[i] = J;
     if (J < min_j) {
       min_j = J;
       min_j_element = e;

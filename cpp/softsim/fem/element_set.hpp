@@ -75,8 +75,9 @@ class ElementSet {
   void compute_volume_ratios(const double* u, int tile, KernelStats& stats);
   // p_a = κ (J_a − 1) for the nodes [begin, end), from the tiles' volume ratios.
   void update_nodal_pressures(int begin, int end);
-  // Σ_a V_a U(J_a): the ANP elements' volumetric energy (energies() holds their isochoric part).
-  double nodal_volumetric_energy(const double* u) const;
+  // Σ_a V_a U(J_a): the ANP elements' volumetric energy (energies() holds their isochoric part),
+  // from the volume ratio of every slot as energies() writes it.
+  double nodal_volumetric_energy(const double* volume_ratio) const;
 
   // Whether the linear elements' forces come from assembled rows (and how many blocks they have).
   bool assembled_linear() const { return !linear_rows_.empty(); }
@@ -131,8 +132,10 @@ class ElementSet {
   // Corner displacements of internal slot i.
   Corners corners(int internal, const double* u) const;
   // Strain energy ⁰V W of each internal slot in [begin, end) into energy[internal] (padding: 0),
-  // and the smallest det F in the range with its original element index.
-  void energies(const double* u, int begin, int end, double* energy, double& min_j, int& min_j_element) const;
+  // its J = det F into volume_ratio[internal] (padding: 1), and the smallest J in the range with
+  // its original element index.
+  void energies(const double* u, int begin, int end, double* energy, double* volume_ratio, double& min_j,
+                int& min_j_element) const;
 
   // Relative cost of one element of each kind (for balancing threads), tled = 1.
   static double relative_cost(ElementKind kind);
