@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -196,6 +197,34 @@ TEST(Explicit, OneAndTwoThreadsAreBitIdentical) {
   for (std::size_t j = 0; j < a.trajectories.size(); ++j)
     for (std::size_t s = 0; s < a.trajectories[j].size(); ++s) EXPECT_EQ(a.trajectories[j][s], b.trajectories[j][s]);
   EXPECT_GT(max_abs(a.displacement), 1e-3);
+}
+
+// Intervals up to the int range are accepted by the config: the next energy sample or snapshot
+// then lies beyond it, and the run must still stop at its last step.
+TEST(Explicit, IntervalsNearTheIntRangeEndTheRunAtItsLastStep) {
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  const fem::Material mat = fem::Material::make(kPaper, material::NeoHookeanForm::paper);
+  const std::vector<ElementKind> kinds(m.num_tets(), ElementKind::tled);
+  dynamics::Scene scene;
+  scene.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero()),
+                       constraint(m, "top", Eigen::Vector3d(0, 0, -0.001))};
+  dynamics::ExplicitOptions opt;
+  opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
+  opt.steps = 30;
+  const auto reference = run_explicit(m, kinds, mat, scene, opt);
+  opt.energy_interval = std::numeric_limits<int>::max();
+  opt.snapshot_interval = std::numeric_limits<int>::max();
+  fem::ElementSet set(m, kinds, mat);
+  dynamics::ExplicitSolver solver(set, dynamics::lumped_mass(m, mat.elastic.density), scene, opt);
+  std::vector<int> snapshots;
+  const auto wide = solver.run([&](int step, double, const std::vector<double>&, const std::vector<double>&) {
+    snapshots.push_back(step);
+  });
+  EXPECT_EQ(wide.steps, 30);
+  EXPECT_EQ(wide.displacement, reference.displacement);
+  EXPECT_EQ(snapshots, std::vector<int>{0});
+  ASSERT_EQ(wide.energies.size(), 2u);  // after the first and the last step
+  EXPECT_EQ(wide.energies.back().time, reference.energies.back().time);
 }
 
 TEST(Explicit, UnstableStepIsANumericalError) {

@@ -1,6 +1,7 @@
 #include "common/app.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "softsim/io/errors.hpp"
@@ -36,6 +37,32 @@ void print_help(const AppInfo& info) {
   if (!info.config_help.empty()) std::cout << "\nConfig:\n" << info.config_help << "\n";
 }
 
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;  // a path that does not exist is no file at all
+  return std::filesystem::equivalent(a, b, ec) && !ec;
+}
+
+// A failed run removes its --out file, so that no stale artifact is left behind. An --out that
+// names a directory, the config or an input named in the config is refused instead (the failure
+// would otherwise delete the user's file, and success overwrite it): the conflict, or "".
+std::string out_path_conflict(const AppContext& ctx) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(ctx.out_path, ec))
+    return "command line: --out " + ctx.out_path + ": expected a file name, got a directory";
+  if (!ctx.config_path.empty() && same_file(ctx.config_path, ctx.out_path))
+    return "command line: --out " + ctx.out_path + ": expected a file other than the --config file";
+  if (!ctx.config_json.is_object()) return "";
+  const nlohmann::json members = ctx.config_json.flatten();  // keys are JSON pointers
+  for (auto it = members.begin(); it != members.end(); ++it)
+    if (it->is_string() && same_file(it->get<std::string>(), ctx.out_path))
+      return ctx.config_path + ": " + it.key() + ": expected a file other than the --out file " + ctx.out_path;
+  return "";
+}
+
+void remove_failed_output(const AppContext& ctx) {
+  if (!ctx.out_path.empty() && out_path_conflict(ctx).empty()) std::remove(ctx.out_path.c_str());
+}
+
 }  // namespace
 
 int run_app(int argc, char** argv, const AppInfo& info,
@@ -54,7 +81,9 @@ int run_app(int argc, char** argv, const AppInfo& info,
         return 0;
       } else if (a == "--config" || a == "--out") {
         if (i + 1 >= args.size()) throw InputError("command line: " + a + " expects a file name");
-        (a == "--config" ? ctx.config_path : ctx.out_path) = args[++i];
+        std::string& path = a == "--config" ? ctx.config_path : ctx.out_path;
+        if (!path.empty()) throw InputError("command line: " + a + " given twice");
+        path = args[++i];
       } else if (info.flags.count(a)) {
         ctx.flags.insert(a);
       } else if (!a.empty() && a[0] != '-' && ctx.mode.empty() && !info.modes.empty()) {
@@ -78,6 +107,8 @@ int run_app(int argc, char** argv, const AppInfo& info,
       static const nlohmann::json empty = nlohmann::json::object();
       ctx.config_ = std::make_unique<io::JsonReader>(empty, "<no config>");
     }
+    if (!ctx.out_path.empty())
+      if (const std::string conflict = out_path_conflict(ctx); !conflict.empty()) throw InputError(conflict);
     body(ctx);
     return 0;
   } catch (const InputError& e) {
@@ -86,11 +117,11 @@ int run_app(int argc, char** argv, const AppInfo& info,
     if (const auto* at = dynamic_cast<const ConfigInputError*>(&e))
       std::cerr << ctx.config_path << ": " << at->pointer << ": ";
     std::cerr << e.what() << "\n";
-    if (!ctx.out_path.empty()) std::remove(ctx.out_path.c_str());
+    remove_failed_output(ctx);
     return 2;
   } catch (const NumericalError& e) {
     std::cerr << info.name << ": numerical failure: " << e.what() << "\n";
-    if (!ctx.out_path.empty()) std::remove(ctx.out_path.c_str());
+    remove_failed_output(ctx);
     return 3;
   } catch (const std::exception& e) {
     std::cerr << info.name << ": internal error: " << e.what() << "\n";

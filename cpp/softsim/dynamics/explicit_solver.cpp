@@ -173,13 +173,16 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
     um1[3 * d.node + d.component] = d.value * scene_.constraints[d.constraint].ramp.at(-dt);
 
   // Recording buffers.
-  const int n_traj_samples = opt_.steps / opt_.trajectory_interval + 1;
+  // Sized in 64 bits (steps / 1 + 1 exceeds the int range); no clock without trajectories.
+  const std::size_t n_traj_samples =
+      opt_.trajectory_nodes.empty() ? 0 : static_cast<std::size_t>(opt_.steps / opt_.trajectory_interval) + 1;
   res.trajectories.assign(opt_.trajectory_nodes.size(), std::vector<Eigen::Vector3d>(n_traj_samples));
   for (std::size_t j = 0; j < opt_.trajectory_nodes.size(); ++j) {
     const int i = opt_.trajectory_nodes[j];
     res.trajectories[j][0] = Eigen::Vector3d(u0[3 * i], u0[3 * i + 1], u0[3 * i + 2]);
   }
-  for (int s = 0; s < n_traj_samples; ++s) res.trajectory_time.push_back(s * opt_.trajectory_interval * dt);
+  for (std::size_t s = 0; s < n_traj_samples; ++s)
+    res.trajectory_time.push_back(static_cast<int>(s) * opt_.trajectory_interval * dt);
   const int n_probe_samples = opt_.steps > 0 ? (opt_.steps - 1) / opt_.trajectory_interval + 1 : 0;
   if (scene_.has_probe) {
     res.probe_force.assign(n_probe_samples, Eigen::Vector3d::Zero());
@@ -210,12 +213,16 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
   const auto t_loop = Clock::now();
   while (n_done < opt_.steps) {
     // Next stop: an energy sample (after steps 1, 1 + interval, ...), a snapshot, or the end.
-    int stop = opt_.steps;
-    const int ei = opt_.energy_interval;
-    const int next_sample = n_done < 1 ? 1 : ((n_done - 1) / ei + 1) * ei + 1;
+    // In 64 bits: with an interval near the int range the next multiple lies beyond it.
+    long long stop = opt_.steps;
+    const long long ei = opt_.energy_interval;
+    const long long next_sample = n_done < 1 ? 1 : ((n_done - 1) / ei + 1) * ei + 1;
     stop = std::min(stop, next_sample);
-    if (opt_.snapshot_interval > 0) stop = std::min(stop, (n_done / opt_.snapshot_interval + 1) * opt_.snapshot_interval);
-    const int s_begin = n_done, s_end = stop;
+    if (opt_.snapshot_interval > 0) {
+      const long long si = opt_.snapshot_interval;
+      stop = std::min(stop, (n_done / si + 1) * si);
+    }
+    const int s_begin = n_done, s_end = static_cast<int>(stop);
     int failed_step = -1;
     bool failed_inversion = false;
 
@@ -287,7 +294,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
           << " is not finite (NaN or overflow); dt = " << dt << " s";
       throw NumericalError(msg.str());
     }
-    n_done = stop;
+    n_done = s_end;
 
     const bool sample_due = (n_done - 1) % opt_.energy_interval == 0 || n_done == opt_.steps;
     if (sample_due) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace softsim::io {
@@ -17,6 +18,57 @@ std::string escape_pointer_token(const std::string& key) {
   }
   return out;
 }
+// Refuses a key repeated in one object while the document is parsed: the parser would keep the
+// last value only, so the first setting would be silently ignored. Tracks the JSON pointer of
+// the value being parsed (object keys, and array indices counted as elements end).
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
+
+  bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start: open_.push_back({true, {}, "", 0}); break;
+      case Event::array_start: open_.push_back({false, {}, "", 0}); break;
+      case Event::key: {
+        Level& object = open_.back();
+        object.key = parsed.get<std::string>();
+        if (!object.keys.insert(object.key).second)
+          throw InputError(file_ + ": " + pointer() + ": expected each key once in an object, got it twice");
+        break;
+      }
+      case Event::object_end:
+      case Event::array_end:
+        open_.pop_back();
+        element_done();
+        break;
+      case Event::value: element_done(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Level {
+    bool object;
+    std::set<std::string> keys;  // object: the keys seen so far
+    std::string key;             // object: the key of the member being parsed
+    std::size_t index;           // array: the elements done so far
+  };
+
+  void element_done() {
+    if (!open_.empty() && !open_.back().object) ++open_.back().index;
+  }
+
+  std::string pointer() const {
+    std::string out;
+    for (const Level& l : open_) out += "/" + (l.object ? escape_pointer_token(l.key) : std::to_string(l.index));
+    return out;
+  }
+
+  std::string file_;
+  std::vector<Level> open_;
+};
+
 }  // namespace
 
 std::string describe_json(const nlohmann::json& value) {
@@ -52,7 +104,7 @@ nlohmann::json JsonReader::parse_file(const std::string& path) {
   if (text.empty()) throw InputError(path + ": expected a JSON document, got an empty file");
   try {
     // Comments are not JSON; NaN/Infinity literals are rejected by the parser itself.
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, DuplicateKeyCheck(path));
   } catch (const nlohmann::json::exception& e) {  // syntax errors and out-of-range numbers
     std::string msg = e.what();
     // nlohmann's message starts with "[json.exception.parse_error.101] "; keep the useful part.

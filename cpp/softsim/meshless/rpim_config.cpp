@@ -77,6 +77,11 @@ PlateScene read_plate_scene(const std::optional<io::JsonReader>& block) {
   s.gauss_order = read_int(r, "gauss_order", s.gauss_order, 1, 10, "an integer between 1 and 10");
   const double node_count = static_cast<double>(s.nodes[0]) * s.nodes[1] * s.nodes[2];
   r.require(node_count <= 2e5, "nodes", "at most 200000 nodes in all");
+  // Every length of the model is measured in the mean spacing: positive edges whose product
+  // underflows (or overflows) would leave none.
+  const double h = plate_mean_spacing(s);
+  r.require(h > 0 && std::isfinite(h), "size",
+            "edge lengths whose mean nodal spacing (volume / nodes)^(1/3) is positive and finite");
   const double points = static_cast<double>(s.background_cells[0]) * s.background_cells[1] *
                         s.background_cells[2] * std::pow(s.gauss_order, 3);
   r.require(points <= 1e7, "background_cells", "at most 1e7 Gauss points in all (cells × gauss_order³)");

@@ -14,8 +14,8 @@ LinearModel make_bar(const BarSpec& spec) {
   model.dofs_per_node = 1;
   const int elements = spec.nodes - 1;
   const double h = bar_element_length(spec);
-  const double k = spec.youngs_modulus * spec.area / h;        // axial element stiffness
-  const double element_mass = spec.density * spec.area * h;    // lumped: half to each end
+  const double k = bar_element_stiffness(spec);
+  const double element_mass = bar_element_mass(spec);  // lumped: half to each end
   model.positions.resize(spec.nodes);
   model.nodal_mass.assign(spec.nodes, 0.0);
   for (int n = 0; n < spec.nodes; ++n) model.positions[n] = Eigen::Vector3d(n * h, 0.0, 0.0);

@@ -20,6 +20,12 @@ LinearModel make_bar(const BarSpec& spec);
 // The element length h = L / (N - 1).
 inline double bar_element_length(const BarSpec& spec) { return spec.length / (spec.nodes - 1); }
 
+// The axial element stiffness E A / h and the element mass rho A h (half to each end).
+inline double bar_element_stiffness(const BarSpec& spec) {
+  return spec.youngs_modulus * spec.area / bar_element_length(spec);
+}
+inline double bar_element_mass(const BarSpec& spec) { return spec.density * spec.area * bar_element_length(spec); }
+
 // The contact node of the bar: its free end.
 inline int bar_contact_node(const BarSpec& spec) { return spec.nodes - 1; }
 

@@ -1,6 +1,8 @@
 #include "softsim/multirate/run_config.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "softsim/io/errors.hpp"
 #include "softsim/multirate/exact_reference.hpp"
@@ -49,6 +51,10 @@ void read_model(const JsonReader& m, RunConfig& c) {
   d.require(c.damping.value >= 0, ratio ? "ratio" : "alpha", "a number >= 0");
   d.reject_unknown();
   m.reject_unknown();
+  // Each value may be fine alone while E A / h or rho A h / 2 overflows or underflows.
+  const double k = bar_element_stiffness(c.bar), half_mass = 0.5 * bar_element_mass(c.bar);
+  if (!(k > 0 && std::isfinite(k) && half_mass > 0 && std::isfinite(half_mass)))
+    m.fail("a bar whose element stiffness E A / h and node mass rho A h / 2 are positive finite numbers");
 }
 
 void read_input(const JsonReader& in, double duration, ProbeSignal& s) {
@@ -189,6 +195,19 @@ RunConfig read_run_config(const JsonReader& cfg) {
   c.comparison.frequency_bin = cfg.get_positive("frequency_bin", 0.5);
   cfg.require(c.comparison.frequency_bin >= 1e-3 && c.comparison.frequency_bin <= 1e6, "frequency_bin",
               "a bin width from 0.001 Hz to 1e6 Hz");
+  // The error-by-frequency tables bin the input's frequency at every frame up to its top value
+  // (a frequency linear in time: at the first or the last frame), at most 1e7 bins.
+  const ProbeSignal& signal = c.comparison.signal;
+  const bool binned = signal.kind == ProbeSignal::Kind::kChirp || signal.kind == ProbeSignal::Kind::kGrowingSine;
+  if (binned && (c.comparison.reference || c.comparison.async)) {
+    const double last = static_cast<double>(loop.frames - 1) * loop.frame_step;
+    const double top = std::max({0.0, signal.frequency(0.0), signal.frequency(last)});
+    if (!(top / c.comparison.frequency_bin <= 1e7)) {
+      std::ostringstream what;
+      what << "a bin width giving at most 1e7 bins up to the input's top frequency (" << top << " Hz)";
+      cfg.fail_member("frequency_bin", what.str());
+    }
+  }
   c.comparison.contact_free_node = free_nodes - 1;  // the bar's free end (model node N-1)
   cfg.reject_unknown();
   return c;
