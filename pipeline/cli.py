@@ -15,7 +15,7 @@ from pipeline.paths import CACHE, RESULTS
 
 
 def _progress_echo():
-    """Plain lines (a log that reads well in CI); a tqdm bar on a terminal when available."""
+    """Plain lines, one per finished run (a log that reads well in CI and on a terminal)."""
     return lambda line: print(line, flush=True)
 
 
@@ -76,10 +76,10 @@ def main(argv) -> int:
     parser = argparse.ArgumentParser(prog="pipeline", description="Run the papers' experiments.")
     sub = parser.add_subparsers(dest="command", required=True)
     p_run = sub.add_parser("run", help="run an experiment (or all)")
-    p_run.add_argument("experiment")
-    p_run.add_argument("--stage", help="rerun this stage (its dependencies come from the cache)")
+    p_run.add_argument("experiment", help="an experiment name (experiments/NAME.json) or all")
+    p_run.add_argument("--stage", help="rerun this stage (its dependencies come from the cache, or run first)")
     p_run.add_argument("--force", action="store_true", help="rerun every selected run")
-    p_run.add_argument("-j", "--jobs", type=int, default=1, help="parallel runs")
+    p_run.add_argument("-j", "--jobs", type=int, default=1, help="parallel runs (default 1)")
     p_run.set_defaults(func=cmd_run)
     p_list = sub.add_parser("list", help="list the experiments and their stages")
     p_list.set_defaults(func=cmd_list)

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
       "   \"linear_solver\": \"sparse\"|\"dense\", \"check_stability\": true,\n"
       "   \"async\": {\"primary\": {\"nodes\": n} | {\"policy\": \"linear\"|\"threshold\", ...},\n"
       "             \"primary_solver\": {...}, \"secondary\": [{\"every\": 20, \"nodes\": 0, \"solver\": {...}}],\n"
-      "             \"interpolate\": true},\n"
+      "             \"interpolate\": true, \"merge_full_rate\": true},\n"
       "   \"reference\": true, \"timing_repeats\": 3, \"series_every\": 0, \"frequency_bin\": 0.5 Hz}\n"
       "  Full reference: cpp/apps/async_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
