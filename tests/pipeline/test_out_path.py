@@ -1,7 +1,7 @@
 """The --out file of every executable (app.cpp): a failed run removes it, so --out must not name
 the config, an input or a directory (the failure would delete the user's file); such an --out,
-or an --out or --config given twice, is bad input (exit 2, one line) and leaves every file as it
-was."""
+an --out or --config given twice, or a --config naming a directory, is bad input (exit 2, one
+line) and leaves every file as it was."""
 import json
 
 from conftest import run_tool, write_json
@@ -67,3 +67,11 @@ def test_out_or_config_given_twice(tmp_path):
     assert_refused(run_tool("mesher", "--config", cfg, "--out", a, "--out", b), "command line: --out given twice")
     assert_refused(run_tool("mesher", "--config", cfg, "--config", cfg, "--out", a), "command line: --config given twice")
     assert not a.exists() and not b.exists()
+
+
+def test_config_naming_a_directory_says_so(tmp_path):
+    folder = tmp_path / "configs"
+    folder.mkdir()
+    out = tmp_path / "out.json"
+    assert_refused(run_tool("mesher", "--config", folder, "--out", out), f"{folder}: expected a JSON file, got a directory")
+    assert not out.exists() and folder.is_dir()

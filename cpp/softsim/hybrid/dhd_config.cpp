@@ -228,6 +228,8 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
       for (int node : load.nodes)
         for (int a = 0; a < 3; ++a)
           if (load.force_per_node[a] != 0.0 && !constrained[3 * node + a]) moves_something = true;
+      if (load.force_per_node.isZero(0.0))
+        e.fail("a non-zero force (a zero force loads nothing)");
       if (!moves_something)
         e.fail("a force acting on at least one free component, but every loaded node is constrained");
       scene.loads.push_back(load);

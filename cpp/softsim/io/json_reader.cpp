@@ -1,6 +1,7 @@
 #include "softsim/io/json_reader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -96,6 +97,8 @@ JsonReader::JsonReader(const nlohmann::json& value, std::string file, std::strin
       read_keys_(std::make_shared<std::set<std::string>>()) {}
 
 nlohmann::json JsonReader::parse_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": expected a JSON file, got a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open file");
   std::stringstream buffer;
