@@ -80,9 +80,7 @@ mesh::TetMesh mesh_from_json(const JsonReader& payload) {
   }
   // A node of no tetrahedron has no mass and no stiffness: the static solve would call the
   // model singular. mesher drops such nodes on import, so one here is a damaged artifact.
-  std::vector<char> used(n, 0);
-  for (const auto& t : m.tets)
-    for (int c : t) used[c] = 1;
+  const std::vector<char> used = mesh::nodes_in_tets(m);
   for (std::size_t i = 0; i < n; ++i)
     if (!used[i]) nodes[i].fail("a node of at least one tetrahedron");
   const JsonReader boundary = payload.at("boundary");

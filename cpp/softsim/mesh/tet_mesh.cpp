@@ -46,13 +46,19 @@ void scale(TetMesh& mesh, double factor) {
   for (auto& x : mesh.nodes) x *= factor;
 }
 
-void drop_unused_nodes(TetMesh& mesh) {
-  std::vector<int> new_index(mesh.nodes.size(), -1);
+std::vector<char> nodes_in_tets(const TetMesh& mesh) {
+  std::vector<char> used(mesh.nodes.size(), 0);
   for (const auto& t : mesh.tets)
-    for (int v : t) new_index[v] = 0;
+    for (int v : t) used[v] = 1;
+  return used;
+}
+
+void drop_unused_nodes(TetMesh& mesh) {
+  const std::vector<char> used = nodes_in_tets(mesh);
+  std::vector<int> new_index(mesh.nodes.size(), -1);
   std::vector<Eigen::Vector3d> kept;
   for (std::size_t i = 0; i < mesh.nodes.size(); ++i)
-    if (new_index[i] == 0) {
+    if (used[i]) {
       new_index[i] = static_cast<int>(kept.size());
       kept.push_back(mesh.nodes[i]);
     }

@@ -43,6 +43,9 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> bounding_box(const TetMesh& mesh);
 // Scales coordinates (a unit conversion at the edge of the project: mm -> m is 1e-3).
 void scale(TetMesh& mesh, double factor);
 
+// Per node: whether some tet uses it.
+std::vector<char> nodes_in_tets(const TetMesh& mesh);
+
 // Removes nodes used by no tet and renumbers (imported meshes carry stray vertices).
 void drop_unused_nodes(TetMesh& mesh);
 

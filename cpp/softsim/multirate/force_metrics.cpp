@@ -46,7 +46,7 @@ FrequencyBins error_by_frequency(const std::vector<double>& force, const std::ve
   if (!(bin_width > 0)) throw InputError("force error by frequency: bin width must be positive");
   double top = 0.0;
   for (double f : frequency) top = std::max(top, f);
-  if (!(top / bin_width <= 1e7)) throw InputError("force error by frequency: more than 1e7 bins");
+  if (!(top / bin_width <= kMaxFrequencyBins)) throw InputError("force error by frequency: more than 1e7 bins");
   const std::size_t bins = static_cast<std::size_t>(std::floor(top / bin_width)) + 1;
   std::vector<double> err(bins, 0.0), ref(bins, 0.0);
   std::vector<long> count(bins, 0);

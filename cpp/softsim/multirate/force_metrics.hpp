@@ -23,8 +23,9 @@ ForceError force_error(const std::vector<double>& force, const std::vector<doubl
 double max_second_difference(const std::vector<double>& force, std::size_t begin = 0, std::size_t end = 0);
 
 // RMS force error in bins of the input's instantaneous frequency (001 Fig. 6: error vs
-// frequency of a chirp). Bins [k w, (k+1) w) up to the largest frequency seen; empty bins are
-// dropped.
+// frequency of a chirp). Bins [k w, (k+1) w) up to the largest frequency seen, at most
+// kMaxFrequencyBins of them (InputError beyond); empty bins are dropped.
+inline constexpr double kMaxFrequencyBins = 1e7;
 struct FrequencyBins {
   std::vector<double> frequency;       // bin centre (Hz)
   std::vector<double> rms_error;       // N

@@ -6,6 +6,7 @@
 
 #include "softsim/io/errors.hpp"
 #include "softsim/multirate/exact_reference.hpp"
+#include "softsim/multirate/force_metrics.hpp"
 #include "softsim/multirate/stability.hpp"
 
 namespace softsim::multirate {
@@ -196,13 +197,14 @@ RunConfig read_run_config(const JsonReader& cfg) {
   cfg.require(c.comparison.frequency_bin >= 1e-3 && c.comparison.frequency_bin <= 1e6, "frequency_bin",
               "a bin width from 0.001 Hz to 1e6 Hz");
   // The error-by-frequency tables bin the input's frequency at every frame up to its top value
-  // (a frequency linear in time: at the first or the last frame), at most 1e7 bins.
+  // (a frequency linear in time: at the first or the last frame): refused here, before the run,
+  // where error_by_frequency would refuse it after.
   const ProbeSignal& signal = c.comparison.signal;
   const bool binned = signal.kind == ProbeSignal::Kind::kChirp || signal.kind == ProbeSignal::Kind::kGrowingSine;
   if (binned && (c.comparison.reference || c.comparison.async)) {
     const double last = static_cast<double>(loop.frames - 1) * loop.frame_step;
     const double top = std::max({0.0, signal.frequency(0.0), signal.frequency(last)});
-    if (!(top / c.comparison.frequency_bin <= 1e7)) {
+    if (!(top / c.comparison.frequency_bin <= kMaxFrequencyBins)) {
       std::ostringstream what;
       what << "a bin width giving at most 1e7 bins up to the input's top frequency (" << top << " Hz)";
       cfg.fail_member("frequency_bin", what.str());
