@@ -1,10 +1,9 @@
 #include "softsim/fem/linear_rows.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 #include "softsim/fem/element_response.hpp"
-#include "softsim/fem/linear_rows_avx512.hpp"
+#include "softsim/fem/linear_rows_avx2.hpp"
 #include "softsim/fem/tet_geometry.hpp"
 
 namespace softsim::fem {
@@ -52,7 +51,7 @@ LinearStiffnessRows::LinearStiffnessRows(const mesh::TetMesh& mesh, const std::v
             if (row == 2 && col == 2)
               k22_[p] += k;
             else
-              block[3 * row + col] += k;
+              block[kBlockSlot[row][col]] += k;
           }
       }
     }
@@ -60,7 +59,7 @@ LinearStiffnessRows::LinearStiffnessRows(const mesh::TetMesh& mesh, const std::v
 }
 
 bool LinearStiffnessRows::vectorised() {
-#ifdef SOFTSIM_ROWS_AVX512
+#if defined(SOFTSIM_ROWS_AVX512) || defined(SOFTSIM_ROWS_AVX2)
   return true;
 #else
   return false;
@@ -69,39 +68,23 @@ bool LinearStiffnessRows::vectorised() {
 
 namespace {
 
-// One row in portable code (GCC vector extensions, lowered to whatever the target has): the same
-// layout as the AVX-512 kernel, but two accumulators instead of four, so the two kernels' sums
-// differ in the last bits (each is the same for any thread count).
-typedef double Vec8 __attribute__((vector_size(64)));
-
-inline Vec8 load8(const double* p) {
-  Vec8 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
+// One row in plain loops, for builds without a vector kernel and to check the vector kernels:
+// f_r = Σ_p Σ_c K_rc u_c with the values found through `slot` (the storage order of kBlockSlot).
+// Its sums run in another order than the vector kernels', so they differ in the last bits (each
+// is the same for any thread count).
 [[gnu::always_inline]] inline void portable_row(const double* block, const double* k22, const int* neighbour,
-                                                int count, const double* u, double* f) {
-  Vec8 even = {0, 0, 0, 0, 0, 0, 0, 0}, odd = even;
-  double s0 = 0, s1 = 0;
-  int p = 0;
-  for (; p + 1 < count; p += 2) {
+                                                int count, const double* u, double* f, const int (&slot)[3][3]) {
+  double f0 = 0, f1 = 0, f2 = 0;
+  for (int p = 0; p < count; ++p) {
     const double* x = u + neighbour[p];
-    const double* y = u + neighbour[p + 1];
-    even += load8(block + 8 * p) * Vec8{x[0], x[1], x[2], x[0], x[1], x[2], x[0], x[1]};
-    odd += load8(block + 8 * p + 8) * Vec8{y[0], y[1], y[2], y[0], y[1], y[2], y[0], y[1]};
-    s0 += k22[p] * x[2];
-    s1 += k22[p + 1] * y[2];
+    const double* k = block + 8 * p;
+    f0 += k[slot[0][0]] * x[0] + k[slot[0][1]] * x[1] + k[slot[0][2]] * x[2];
+    f1 += k[slot[1][0]] * x[0] + k[slot[1][1]] * x[1] + k[slot[1][2]] * x[2];
+    f2 += k[slot[2][0]] * x[0] + k[slot[2][1]] * x[1] + k22[p] * x[2];
   }
-  if (p < count) {
-    const double* x = u + neighbour[p];
-    even += load8(block + 8 * p) * Vec8{x[0], x[1], x[2], x[0], x[1], x[2], x[0], x[1]};
-    s0 += k22[p] * x[2];
-  }
-  const Vec8 t = even + odd;
-  f[0] = t[0] + t[1] + t[2];
-  f[1] = t[3] + t[4] + t[5];
-  f[2] = t[6] + t[7] + (s0 + s1);
+  f[0] = f0;
+  f[1] = f1;
+  f[2] = f2;
 }
 
 }  // namespace
@@ -124,14 +107,19 @@ void LinearStiffnessRows::for_each_row(const int* nodes_begin, const int* nodes_
 
 void LinearStiffnessRows::multiply_rows(const int* nodes_begin, const int* nodes_end, const double* u, double* f,
                                         Kernel kernel) const {
-#ifdef SOFTSIM_ROWS_AVX512
+#if defined(SOFTSIM_ROWS_AVX512)
   if (kernel == Kernel::best)
     return for_each_row(nodes_begin, nodes_end, u, f,
                         [](auto... row) __attribute__((always_inline)) { rows_avx512::row(row...); });
+#elif defined(SOFTSIM_ROWS_AVX2)
+  if (kernel == Kernel::best)
+    return for_each_row(nodes_begin, nodes_end, u, f,
+                        [](auto... row) __attribute__((always_inline)) { rows_avx2::row(row...); });
 #else
   (void)kernel;
 #endif
-  for_each_row(nodes_begin, nodes_end, u, f, [](auto... row) __attribute__((always_inline)) { portable_row(row...); });
+  for_each_row(nodes_begin, nodes_end, u, f,
+               [](auto... row) __attribute__((always_inline)) { portable_row(row..., kBlockSlot); });
 }
 
 }  // namespace softsim::fem

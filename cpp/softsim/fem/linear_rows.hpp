@@ -11,10 +11,14 @@
 // once instead; a row then streams its blocks and reads each neighbour's displacement once.
 // The assembled matrix depends on the mesh topology, so a cut would have to rebuild it.
 //
-// Storage: the first eight values of each block, row by row (K_00 K_01 K_02 K_10 K_11 K_12 K_20
-// K_21), fill one 64-byte line, so that a single 8-wide multiply-add takes a whole block against
-// the neighbour's displacement laid out as (u0 u1 u2 u0 u1 u2 u0 u1); K_22 lives in a separate
-// array. A row's three sums are formed once at its end.
+// Storage: eight values of each block fill one 64-byte line and K_22 lives in a separate array;
+// the order of the eight is the one the build's vector kernel consumes without shuffling
+// (kBlockSlot below). With AVX-512 they are row by row (K_00 K_01 K_02 K_10 K_11 K_12 K_20 K_21),
+// so that a single 8-wide multiply-add takes a whole block against the neighbour's displacement
+// spread as (u0 u1 u2 u0 u1 u2 u0 u1); otherwise they are (K_00 K_01 K_10 K_11 | K_20 K_21 K_02
+// K_12), two 4-wide halves taken against (u0 u1 u0 u1) and (u0 u1 u2 u2), which are a broadcast
+// load and a blend away from the displacement in memory. A row's three sums are formed once at
+// its end.
 //
 // Every row is summed in one fixed order (its blocks by ascending neighbour), whoever
 // evaluates it, so results are bit-identical for any thread count.
@@ -23,13 +27,15 @@
 #include "softsim/fem/aligned.hpp"
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/fem/element_kind.hpp"
+#include "softsim/fem/linear_rows_avx512.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::fem {
 
 class LinearStiffnessRows {
  public:
-  // Which code evaluates the rows: the 8-wide one where the build targets AVX-512, otherwise
+  // Which code evaluates the rows: the vector kernel the build targets (AVX-512, else AVX2 with
+  // FMA: linear_rows_avx512.hpp, linear_rows_avx2.hpp), otherwise
   // (and on request, to check one against the other) plain loops.
   enum class Kernel { best, portable };
 
@@ -45,9 +51,9 @@ class LinearStiffnessRows {
   int first_block(int node) const { return row_begin_[node]; }
   int column_node(int block) const { return neighbour_[block] / 3; }
   double value(int block, int row, int col) const {
-    return row == 2 && col == 2 ? k22_[block] : block_[8 * static_cast<std::size_t>(block) + 3 * row + col];
+    return row == 2 && col == 2 ? k22_[block] : block_[8 * static_cast<std::size_t>(block) + kBlockSlot[row][col]];
   }
-  // Whether Kernel::best is the 8-wide kernel in this build.
+  // Whether Kernel::best is a vector kernel (AVX-512 or AVX2) in this build.
   static bool vectorised();
 
   // f[3a..3a+2] = (K_lin u) at every node a of [nodes_begin, nodes_end) that has a row; nodes
@@ -56,12 +62,19 @@ class LinearStiffnessRows {
                      Kernel kernel = Kernel::best) const;
 
  private:
+  // Where K_rc of a block sits among its eight values in block_ (K_22, marked −1, is in k22_).
+#ifdef SOFTSIM_ROWS_AVX512
+  static constexpr int kBlockSlot[3][3] = {{0, 1, 2}, {3, 4, 5}, {6, 7, -1}};
+#else
+  static constexpr int kBlockSlot[3][3] = {{0, 1, 6}, {2, 3, 7}, {4, 5, -1}};
+#endif
+
   template <class Row>
   void for_each_row(const int* nodes_begin, const int* nodes_end, const double* u, double* f, Row row) const;
 
   std::vector<int> row_begin_;   // per node: first block of its row (n + 1 values)
   std::vector<int> neighbour_;   // per block: 3 × the column node
-  AlignedVector<double> block_;  // 8 per block: K_00 .. K_21 row by row
+  AlignedVector<double> block_;  // 8 per block: every K_rc but K_22, in the order of kBlockSlot
   std::vector<double> k22_;      // per block: K_22
 };
 
