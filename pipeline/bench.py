@@ -44,13 +44,29 @@ def run_benchmarks(filter_regex: str = "") -> int:
         sections.append(f"## {exe.name}\n\n" + markdown_table(
             ["benchmark", "iterations", "real time", "cpu time", "unit", "counters"], rows))
     ctx = data.get("context", {}) if benches else {}
-    sections.append(f"Machine: {ctx.get('num_cpus', '?')} CPUs at {ctx.get('mhz_per_cpu', '?')} MHz, "
-                    f"library build type {ctx.get('library_build_type', '?')}.\n")
+    machine = (f"{cpu_description()}, {ctx.get('num_cpus', '?')} CPUs at {ctx.get('mhz_per_cpu', '?')} MHz, "
+               f"library build type {ctx.get('library_build_type', '?')}")
+    sections.append(f"Machine: {machine}.\n")
     (out_dir / "README.md").write_text("\n".join(sections))
-    summary = ["## Benchmarks\n", "Raw Google Benchmark tables: [bench/README.md](bench/README.md).\n"]
+    summary = ["## Benchmarks\n", "Raw Google Benchmark tables: [bench/README.md](bench/README.md). "
+               f"Machine: {machine}.\n"]
     summary += kernel_ratios(out_dir / "bench_dhd.json")
     (out_dir / "summary.md").write_text("\n".join(summary))
     return status
+
+
+def cpu_description(cpuinfo="/proc/cpuinfo"):
+    """The CPU model and the widest vector extension the build's kernels use on it (-march=native):
+    the cost ratios below depend on both (AVX-512 halves the element kernels' instructions)."""
+    try:
+        text = open(cpuinfo).read()
+    except OSError:
+        return "CPU unknown"
+    model = next((line.split(":", 1)[1].strip() for line in text.splitlines() if line.startswith("model name")),
+                 "CPU unknown")
+    flags = next((set(line.split(":", 1)[1].split()) for line in text.splitlines() if line.startswith("flags")), set())
+    vector = "AVX-512" if {"avx512f", "avx512vl"} <= flags else "AVX2" if {"avx2", "fma"} <= flags else "no AVX2"
+    return f"{model} ({vector})"
 
 
 def kernel_ratios(path):

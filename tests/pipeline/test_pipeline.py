@@ -148,3 +148,13 @@ def test_kernel_ratios_are_relative_to_tled_and_judge_the_target(tmp_path):
         "BM_NodalForces/partition:0": 100.0, "BM_NodalForces/partition:2": 30.0})))
     assert "0.3× — met" in met and "already costs" not in met
     assert kernel_ratios(tmp_path / "missing.json") == []
+
+
+def test_cpu_description_names_the_model_and_the_widest_vector_extension(tmp_path):
+    from pipeline.bench import cpu_description
+    info = tmp_path / "cpuinfo"
+    for flags, expected in [("fpu avx2 fma avx512f avx512vl", "AVX-512"), ("fpu avx avx2 fma", "AVX2"),
+                            ("fpu sse4_2 avx", "no AVX2"), ("fpu avx512f avx2 fma", "AVX2")]:
+        info.write_text(f"processor\t: 0\nmodel name\t: Some CPU\nflags\t\t: {flags}\n\nprocessor\t: 1\n")
+        assert cpu_description(str(info)) == f"Some CPU ({expected})"
+    assert cpu_description(str(tmp_path / "missing")) == "CPU unknown"
