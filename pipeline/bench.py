@@ -56,15 +56,20 @@ def run_benchmarks(filter_regex: str = "") -> int:
 
 
 def cpu_description(cpuinfo="/proc/cpuinfo"):
-    """The CPU model and the widest vector extension the build's kernels use on it (-march=native):
-    the cost ratios below depend on both (AVX-512 halves the element kernels' instructions)."""
+    """The CPU model and the widest vector extension it offers, which the default build
+    (-march=native on the same machine) compiles the kernels for: the cost ratios below depend on
+    both (AVX-512 halves the element kernels' instructions)."""
     try:
         text = open(cpuinfo).read()
     except OSError:
         return "CPU unknown"
-    model = next((line.split(":", 1)[1].strip() for line in text.splitlines() if line.startswith("model name")),
-                 "CPU unknown")
-    flags = next((set(line.split(":", 1)[1].split()) for line in text.splitlines() if line.startswith("flags")), set())
+    fields = {}  # of the first processor listed
+    for line in text.splitlines():
+        key, colon, value = line.partition(":")
+        if colon:
+            fields.setdefault(key.strip(), value.strip())
+    model = fields.get("model name", "CPU unknown")
+    flags = set(fields.get("flags", "").split())
     vector = "AVX-512" if {"avx512f", "avx512vl"} <= flags else "AVX2" if {"avx2", "fma"} <= flags else "no AVX2"
     return f"{model} ({vector})"
 

@@ -168,7 +168,7 @@ BENCHMARK(BM_NodalForces)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)-
 // The assembled linear rows of the paper mesh, all nodes once (as in BM_Kernel/partition:2), and
 // the same number of row products over the first eighth of the nodes eight times, whose blocks
 // stay in the L2 cache: the ratio tells how much of the row product is streaming the matrix.
-// kernel 0: the engine's (8-wide where the build has AVX-512), 1: the portable loops.
+// kernel 0: the engine's (the AVX-512 or AVX2 kernel where the build has one), 1: the plain loops.
 void BM_LinearRows(benchmark::State& state) {
   const int repeats = static_cast<int>(state.range(0));
   const auto kernel = state.range(1) == 0 ? fem::LinearStiffnessRows::Kernel::best : fem::LinearStiffnessRows::Kernel::portable;

@@ -27,7 +27,7 @@
 #include "softsim/fem/aligned.hpp"
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/fem/element_kind.hpp"
-#include "softsim/fem/linear_rows_avx512.hpp"
+#include "softsim/fem/linear_rows_avx512.hpp"  // SOFTSIM_ROWS_AVX512: which storage order (kBlockSlot)
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::fem {
@@ -62,7 +62,8 @@ class LinearStiffnessRows {
                      Kernel kernel = Kernel::best) const;
 
  private:
-  // Where K_rc of a block sits among its eight values in block_ (K_22, marked −1, is in k22_).
+  // Where K_rc of a block sits among its eight values in block_ (K_22, marked −1, is in k22_):
+  // the order of the kernel multiply_rows picks for this build.
 #ifdef SOFTSIM_ROWS_AVX512
   static constexpr int kBlockSlot[3][3] = {{0, 1, 2}, {3, 4, 5}, {6, 7, -1}};
 #else
