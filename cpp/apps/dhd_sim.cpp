@@ -79,14 +79,14 @@ int main(int argc, char** argv) {
     dynamics::SnapshotFn snapshot;
     if (!config.output.vtu.empty() && config.output.vtu_interval > 0)
       snapshot = [&](int step, double, const std::vector<double>& u, const std::vector<double>& v) {
-        io::write_vtu(snapshot_path(config.output.vtu, step), mesh, vtu_fields(mesh, kinds, u, v));
+        io::write_vtu(snapshot_path(config.output.vtu, step), mesh, vtu_fields(mesh, kinds, u, v), io::VtuFormat::ascii);
       };
     const hybrid::DhdRun run = hybrid::run_dhd(mesh, config, kinds, snapshot);
     if (!config.output.vtu.empty()) {
       const std::vector<double>& u =
           run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement;
       const std::vector<double> v = run.explicit_result ? run.explicit_result->velocity : std::vector<double>();
-      io::write_vtu(config.output.vtu, mesh, vtu_fields(mesh, run.kinds, u, v));
+      io::write_vtu(config.output.vtu, mesh, vtu_fields(mesh, run.kinds, u, v), io::VtuFormat::ascii);
     }
     ctx.write(hybrid::kResultSchema, hybrid::kResultSchemaVersion, hybrid::result_payload(mesh, config, run));
     if (run.explicit_result)

@@ -55,11 +55,13 @@ int main(int argc, char** argv) {
       "  {\"source\": {\"kind\": \"cuboid\", \"cells\": [nx, ny, nz], \"size\": [lx, ly, lz] (m), \"origin\": [x, y, z]}\n"
       "           | {\"kind\": \"file\", \"path\": \"mesh.msh|.vtk|.obj|.stl\", \"scale\": to-metres factor, \"target_edge\": h},\n"
       "   \"sliver_threshold_deg\": 5.0,   smallest dihedral angle below which an element is flagged\n"
-      "   \"vtu\": \"mesh.vtu\"}             optional ParaView file";
+      "   \"vtu\": \"mesh.vtu\",             optional ParaView file\n"
+      "   \"vtu_format\": \"raw\"}            \"ascii\" | \"base64\" | \"raw\" (appended binary)";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
     const io::JsonReader& cfg = ctx.config();
     const double sliver = cfg.get_positive("sliver_threshold_deg", 5.0);
     const std::string vtu = cfg.get_string("vtu", "");
+    const io::VtuFormat vtu_format = *io::parse_vtu_format(cfg.get_choice("vtu_format", io::kVtuFormatNames, "raw"));
     nlohmann::json source_info;
     const io::JsonReader source = cfg.at("source");
     cfg.reject_unknown();
@@ -71,7 +73,7 @@ int main(int argc, char** argv) {
     if (!vtu.empty()) {
       io::VtuFields fields;
       fields.cell_ints = m.element_tags;
-      io::write_vtu(vtu, m, fields);
+      io::write_vtu(vtu, m, fields, vtu_format);
     }
     ctx.write(io::kMeshSchema, io::kMeshSchemaVersion, std::move(payload));
     std::cerr << "mesher: " << q.nodes << " nodes, " << q.tets << " tets, " << q.boundary_triangles

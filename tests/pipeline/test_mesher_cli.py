@@ -42,15 +42,16 @@ def test_imported_mesh_records_input_hash(tmp_path):
     assert prov["inputs"][src] == hashlib.sha256((ROOT / src).read_bytes()).hexdigest()
 
 
-def test_vtu_read_back_with_meshio(tmp_path):
+@pytest.mark.parametrize("vtu_format", ["ascii", "base64", "raw"])
+def test_vtu_read_back_with_meshio(tmp_path, vtu_format):
     meshio = pytest.importorskip("meshio")
-    cfg = dict(CUBOID, vtu=str(tmp_path / "m.vtu"))
+    cfg = dict(CUBOID, vtu=str(tmp_path / "m.vtu"), vtu_format=vtu_format)
     out = tmp_path / "m.json"
     r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", cfg), "--out", out)
     assert r.returncode == 0, r.stderr
     m = meshio.read(tmp_path / "m.vtu")
     pl = json.loads(out.read_text())["payload"]
-    assert m.points.shape == (120, 3)
+    assert (m.points == pl["nodes"]).all()  # bit for bit in every format (ASCII: shortest exact digits)
     assert m.cells_dict["tetra"].shape == (300, 4)
     assert (m.cells_dict["tetra"] == pl["tets"]).all()
     assert list(m.cell_data_dict["layer"]["tetra"]) == pl["element_tags"]["layer"]
@@ -68,6 +69,7 @@ BAD_CONFIGS = {
     "missing_file": ({"source": {"kind": "file", "path": "no/such/mesh.msh"}}, "no/such/mesh.msh: cannot open file"),
     "not_a_mesh": ({"source": {"kind": "file", "path": "CMakeLists.txt"}}, "expected a mesh file"),
     "nan_literal": ('{"source": {"kind": "cuboid", "cells": [1,1,1], "size": [NaN, 1, 1]}}', "invalid JSON"),
+    "unknown_vtu_format": ({**CUBOID, "vtu": "m.vtu", "vtu_format": "binary"}, '/vtu_format: expected one of "ascii", "base64", "raw"'),
 }
 
 
@@ -117,3 +119,4 @@ def test_closed_obj_surface_becomes_a_valid_volume(tmp_path):
     # Remeshing the surface moves it slightly; 2 % of the volume is far above that and far below
     # any gross failure (holes, missing regions).
     assert abs(q["total_volume"] - 1.147e-3) < 0.02 * 1.147e-3
+
