@@ -57,6 +57,23 @@ def test_vtu_read_back_with_meshio(tmp_path, vtu_format):
     assert list(m.cell_data_dict["layer"]["tetra"]) == pl["element_tags"]["layer"]
 
 
+@pytest.mark.parametrize("vtu_format", ["ascii", "base64", "raw"])
+def test_vtu_written_by_mesher_is_a_mesh_input(tmp_path, vtu_format):
+    """mesher's own VTU read back as a mesh file gives the same nodes, tets and element tags
+    (node sets other than "boundary" are not in a VTU)."""
+    cfg = dict(CUBOID, vtu=str(tmp_path / "m.vtu"), vtu_format=vtu_format)
+    r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", cfg), "--out", tmp_path / "m.json")
+    assert r.returncode == 0, r.stderr
+    cfg2 = {"source": {"kind": "file", "path": str(tmp_path / "m.vtu")}}
+    r = run_tool("mesher", "--config", write_json(tmp_path / "c2.json", cfg2), "--out", tmp_path / "m2.json")
+    assert r.returncode == 0, r.stderr
+    a = json.loads((tmp_path / "m.json").read_text())["payload"]
+    b = json.loads((tmp_path / "m2.json").read_text())["payload"]
+    assert a["nodes"] == b["nodes"] and a["tets"] == b["tets"] and a["boundary"] == b["boundary"]
+    assert a["element_tags"] == b["element_tags"]
+    assert a["node_sets"]["boundary"] == b["node_sets"]["boundary"]
+
+
 BAD_CONFIGS = {
     "truncated": ('{"source": {"kind": "cuboid"', "invalid JSON"),
     "not_object": ("[1, 2]", "expected a JSON object"),
