@@ -198,6 +198,29 @@ TEST(VtkReader, Version51OffsetsConnectivityLayout) {
   EXPECT_EQ(m.element_tags.at("materials"), (std::vector<int>{1, 3}));
 }
 
+TEST(VtkReader, FieldDataAsVtk9WritesItTagsIntegerCellArraysAndSkipsTheRest) {
+  // Written by VTK 9.1 itself (tests/data/meshes/make_vtk_fixtures.py): the cell arrays are a
+  // FIELD block (an int, a 64-bit int and a 6-component double array with METADATA), the point
+  // data a VECTORS array, and one cell is a triangle.
+  const std::string path = kFixtureDir + "vtk9_field.vtk";
+  const auto m = mesh::read_vtk_legacy(io::read_text_file(path), path);
+  ASSERT_EQ(m.num_tets(), 2);
+  EXPECT_EQ(m.num_nodes(), 5);  // the triangle's own point is dropped
+  EXPECT_EQ(m.tets[1], (mesh::Tet{1, 2, 3, 4}));
+  EXPECT_EQ(m.element_tags.at("region"), (std::vector<int>{3, 5}));
+  EXPECT_EQ(m.element_tags.at("material"), (std::vector<int>{1, 2}));
+  EXPECT_EQ(m.element_tags.count("stress"), 0u);
+}
+
+TEST(VtkReader, FieldArraysMustMatchTheCellCount) {
+  const std::string text =
+      "# vtk DataFile Version 3.0\ntitle\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 2 1 3\nCELL_TYPES 1\n10\n"
+      "CELL_DATA 1\nFIELD FieldData 1\nregion 1 2 int\n4 5\n";
+  const std::string e = input_error_of([&] { mesh::read_vtk_legacy(text, "short.vtk"); });
+  EXPECT_NE(e.find("short.vtk: line 13: expected 1 tuples"), std::string::npos) << e;
+}
+
 namespace {
 // A mesh whose coordinates have no short decimal form (thirds, and a perturbation), with tags.
 mesh::TetMesh awkward_mesh() {

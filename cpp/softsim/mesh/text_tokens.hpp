@@ -21,6 +21,8 @@ class TextTokens {
   void skip_line();          // skips the rest of the current line
   std::string rest_of_line();
   int line() const { return line_; }
+  // Whether every byte has been read (unlike at_end, skips nothing: an empty line still counts).
+  bool exhausted() const { return pos_ >= text_.size(); }
   [[noreturn]] void fail(const std::string& expected, const std::string& got) const;
 
  private:
