@@ -289,3 +289,39 @@ TEST(VtuReader, RefusesCompressedTruncatedAndMalformedFilesNamingThem) {
   EXPECT_NE(error("<VTKFile type=\"PolyData\">").find("expected type=\"UnstructuredGrid\""), std::string::npos);
   EXPECT_NE(error("not xml at all").find("bad.vtu"), std::string::npos);
 }
+
+TEST(GmshReader, BinaryFilesHoldTheSameMeshAsAscii) {
+  // tests/data/meshes/two_boxes.geo meshed once by Gmsh and saved as ASCII and binary 4.1 and
+  // 2.2: two physical volumes (7, 9) and a physical surface whose triangles are skipped.
+  const auto read = [](const std::string& name) {
+    const std::string path = kFixtureDir + name;
+    return mesh::read_gmsh(io::read_text_file(path), path);
+  };
+  const mesh::TetMesh ascii = read("two_boxes_ascii41.msh");
+  ASSERT_EQ(ascii.num_tets(), 200);
+  const auto& physical = ascii.element_tags.at("physical");
+  EXPECT_EQ(std::count(physical.begin(), physical.end(), 7) + std::count(physical.begin(), physical.end(), 9), 200);
+  EXPECT_GT(std::count(physical.begin(), physical.end(), 7), 0);
+  EXPECT_GT(std::count(physical.begin(), physical.end(), 9), 0);
+  for (const char* name : {"two_boxes_bin41.msh", "two_boxes_ascii22.msh", "two_boxes_bin22.msh"}) {
+    const mesh::TetMesh m = read(name);
+    EXPECT_EQ(m.tets, ascii.tets) << name;
+    EXPECT_EQ(m.element_tags, ascii.element_tags) << name;
+    ASSERT_EQ(m.num_nodes(), ascii.num_nodes()) << name;
+    // ASCII files hold 16 significant digits: one unit in the 16th digit of the unit boxes.
+    for (int i = 0; i < m.num_nodes(); ++i) EXPECT_LE((m.nodes[i] - ascii.nodes[i]).norm(), 4e-16) << name << " node " << i;
+  }
+}
+
+TEST(GmshReader, TruncatedBinaryFileNamesTheByte) {
+  const std::string path = kFixtureDir + "two_boxes_bin41.msh";
+  const std::string bytes = io::read_text_file(path);
+  for (const std::size_t keep : {bytes.find("$Nodes") + 20, bytes.find("$Elements") + 100}) {
+    const std::string e = input_error_of([&] { mesh::read_gmsh(bytes.substr(0, keep), "cut.msh"); });
+    EXPECT_NE(e.find("cut.msh: byte "), std::string::npos) << e;
+  }
+  std::string swapped = bytes;  // the int 1 of another byte order
+  const std::size_t one = swapped.find("4.1 1 8\n") + 8;
+  std::swap(swapped[one], swapped[one + 3]);
+  EXPECT_NE(input_error_of([&] { mesh::read_gmsh(swapped, "be.msh"); }).find("this machine's byte order"), std::string::npos);
+}

@@ -1,6 +1,8 @@
 """The mesher executable: the command-line contract, bad input, and the VTU read back by an
 independent reader (meshio)."""
 import json
+import shutil
+import subprocess
 
 import pytest
 
@@ -137,3 +139,24 @@ def test_closed_obj_surface_becomes_a_valid_volume(tmp_path):
     # any gross failure (holes, missing regions).
     assert abs(q["total_volume"] - 1.147e-3) < 0.02 * 1.147e-3
 
+
+@pytest.mark.skipif(shutil.which("gmsh") is None, reason="gmsh is not installed")
+@pytest.mark.parametrize("msh_format", ["msh41", "msh22"])
+def test_binary_gmsh_file_gives_the_ascii_mesh(tmp_path, msh_format):
+    """The installed Gmsh saves one mesh as ASCII and as binary: mesher reads both to the same
+    tets and tags, and nodes equal up to the ASCII file's 16 significant digits."""
+    geo = ROOT / "tests/data/meshes/two_boxes.geo"
+    subprocess.run(["gmsh", "-3", str(geo), "-format", "msh41", "-o", str(tmp_path / "a.msh"), "-v", "0"], check=True)
+    payloads = {}
+    for name, extra in [("ascii", []), ("binary", ["-bin"])]:
+        path = tmp_path / f"{name}.msh"
+        subprocess.run(["gmsh", str(tmp_path / "a.msh"), "-save", *extra, "-format", msh_format, "-o", str(path),
+                        "-v", "0"], check=True)
+        cfg = write_json(tmp_path / f"{name}.json", {"source": {"kind": "file", "path": str(path)}})
+        r = run_tool("mesher", "--config", cfg, "--out", tmp_path / f"{name}_mesh.json")
+        assert r.returncode == 0, r.stderr
+        payloads[name] = json.loads((tmp_path / f"{name}_mesh.json").read_text())["payload"]
+    a, b = payloads["ascii"], payloads["binary"]
+    assert a["tets"] == b["tets"] and a["element_tags"] == b["element_tags"]
+    assert sorted(set(a["element_tags"]["physical"])) == [7, 9]
+    assert max(abs(x - y) for p, q in zip(a["nodes"], b["nodes"]) for x, y in zip(p, q)) <= 4e-16
