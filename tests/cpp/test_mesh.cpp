@@ -283,6 +283,11 @@ TEST(VtuReader, RefusesCompressedTruncatedAndMalformedFilesNamingThem) {
       << error(compressed);
   const std::string cut = raw.substr(0, raw.size() - 40);  // the types block cut short
   EXPECT_NE(error(cut).find("in DataArray \"types\""), std::string::npos) << error(cut);
+  io::write_vtu(path, m, {}, io::VtuFormat::ascii);
+  const std::string ascii = io::read_text_file(path);
+  std::filesystem::remove(path);
+  const std::string cut_text = ascii.substr(0, ascii.find("<Points>") + 60);  // ends inside the points
+  EXPECT_NE(error(cut_text).find("bad.vtu: line "), std::string::npos) << error(cut_text);
   std::string garbage = b64;
   garbage.replace(garbage.find("format=\"binary\">\n") + 17, 4, "!!!!");
   EXPECT_NE(error(garbage).find("base64"), std::string::npos) << error(garbage);

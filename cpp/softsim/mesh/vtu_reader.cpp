@@ -356,7 +356,8 @@ std::int64_t count_attribute(const Tag& tag, const std::string& key, const TagSc
 TetMesh read_vtu(const std::string& bytes, const std::string& source) {
   // Raw appended data may hold any byte, '<' included: the XML part ends where it begins.
   const std::size_t appended = bytes.find("<AppendedData");
-  TagScanner xml(bytes, appended == std::string::npos ? bytes.size() : appended, source);
+  const std::size_t xml_end = appended == std::string::npos ? bytes.size() : appended;
+  TagScanner xml(bytes, xml_end, source);
 
   const auto root = xml.next();
   if (!root || root->name != "VTKFile") xml.fail(0, "a VTK XML file (<VTKFile ...>)", root ? root->name : "");
@@ -391,7 +392,7 @@ TetMesh read_vtu(const std::string& bytes, const std::string& source) {
       a.tag = *tag;
       a.section = section;
       a.content_begin = a.content_end = tag->end;
-      if (!tag->empty) a.content_end = std::min(bytes.find('<', tag->end), appended);
+      if (!tag->empty) a.content_end = std::min(bytes.find('<', tag->end), xml_end);
       if (!section.empty()) arrays.push_back(std::move(a));
     }
   }
