@@ -56,12 +56,13 @@ int main(int argc, char** argv) {
       "           | {\"kind\": \"file\", \"path\": \"mesh.msh|.vtk|.obj|.stl\", \"scale\": to-metres factor, \"target_edge\": h},\n"
       "   \"sliver_threshold_deg\": 5.0,   smallest dihedral angle below which an element is flagged\n"
       "   \"vtu\": \"mesh.vtu\",             optional ParaView file\n"
-      "   \"vtu_format\": \"raw\"}            \"ascii\" | \"base64\" | \"raw\" (appended binary)";
+      "   \"vtu_format\": \"base64\"}         \"ascii\" | \"base64\" (inline binary) | \"raw\" (appended binary)";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
     const io::JsonReader& cfg = ctx.config();
     const double sliver = cfg.get_positive("sliver_threshold_deg", 5.0);
     const std::string vtu = cfg.get_string("vtu", "");
-    const io::VtuFormat vtu_format = *io::parse_vtu_format(cfg.get_choice("vtu_format", io::kVtuFormatNames, "raw"));
+    const io::VtuFormat vtu_format = *io::parse_vtu_format(
+        cfg.get_choice("vtu_format", io::kVtuFormatNames, io::vtu_format_name(io::kDefaultVtuFormat)));
     nlohmann::json source_info;
     const io::JsonReader source = cfg.at("source");
     cfg.reject_unknown();

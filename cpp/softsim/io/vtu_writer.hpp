@@ -1,7 +1,7 @@
 #pragma once
 // VTK XML UnstructuredGrid (.vtu) export so any mesh or result opens in ParaView, in one of
-// three encodings: ASCII, inline base64 and raw appended binary (what ParaView writes by
-// default). Binary arrays carry VTK's UInt64 byte-count header; mesh/vtu_reader.hpp reads all
+// three encodings: ASCII, inline base64 and raw appended binary (what ParaView's "Save Data"
+// writes by default). Binary arrays carry VTK's UInt64 byte-count header; mesh/vtu_reader.hpp reads all
 // three back.
 #include <array>
 #include <map>
@@ -25,6 +25,11 @@ enum class VtuFormat {
 const char* vtu_format_name(VtuFormat format);
 std::optional<VtuFormat> parse_vtu_format(const std::string& name);
 inline const std::vector<std::string> kVtuFormatNames = {"ascii", "base64", "raw"};
+// What the tools write unless told otherwise: binary (exact and compact), and still well-formed
+// XML that every VTU reader takes. Raw appended data is smaller and faster, but XML tools refuse
+// it, and meshio (5.x, Debian 12) misreads files with several raw appended arrays: it rewrites
+// their offsets in place and can then find an array by another's offset.
+inline constexpr VtuFormat kDefaultVtuFormat = VtuFormat::base64;
 
 // A symmetric tensor as VTK stores one in 6 components: xx, yy, zz, xy, yz, xz (the order of
 // vtkMath::TensorFromSymmetricTensor, and the component names ParaView shows).
