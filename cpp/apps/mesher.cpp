@@ -6,6 +6,7 @@
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/mesh_files.hpp"
 #include "softsim/io/vtu_writer.hpp"
+#include "softsim/meshing/gmsh_volume.hpp"
 #include "softsim/mesh/cuboid.hpp"
 #include "softsim/mesh/quality.hpp"
 
@@ -40,6 +41,7 @@ mesh::TetMesh build_mesh(const io::JsonReader& source, nlohmann::json& source_in
   const std::string path = ctx.input(source.get_string("path"));
   opt.scale = source.get_positive("scale", 1.0);
   opt.target_edge = source.has("target_edge") ? source.get_positive("target_edge") : 0.0;
+  opt.surface_mesher = meshing::volume_from_surface;
   source.reject_unknown();
   source_info = {{"kind", "file"}, {"path", path}, {"scale", opt.scale}};
   return io::load_mesh_file(path, opt);

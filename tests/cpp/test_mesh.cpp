@@ -12,8 +12,10 @@
 #include "softsim/io/errors.hpp"
 #include "softsim/io/mesh_files.hpp"
 #include "softsim/io/vtu_writer.hpp"
+#include "softsim/meshing/gmsh_volume.hpp"
 #include "softsim/mesh/cuboid.hpp"
 #include "softsim/mesh/gmsh_reader.hpp"
+#include "softsim/mesh/obj_reader.hpp"
 #include "softsim/mesh/quality.hpp"
 #include "softsim/mesh/surface.hpp"
 #include "softsim/mesh/vtk_legacy_reader.hpp"
@@ -329,4 +331,52 @@ TEST(GmshReader, TruncatedBinaryFileNamesTheByte) {
   const std::size_t one = swapped.find("4.1 1 8\n") + 8;
   std::swap(swapped[one], swapped[one + 3]);
   EXPECT_NE(input_error_of([&] { mesh::read_gmsh(swapped, "be.msh"); }).find("this machine's byte order"), std::string::npos);
+}
+
+namespace {
+// A unit cube as an OBJ surface (quads, outward), and the same without its top face.
+const std::string kCubeObj =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+const std::string kTopFace = "f 5 6 7 8\n";
+
+std::string scratch_file(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  io::write_file_atomic(path, text);
+  return path;
+}
+}  // namespace
+
+TEST(ObjReader, FansPolygonsAndNamesTheLineOfABadIndex) {
+  const auto s = mesh::read_obj(kCubeObj + kTopFace, "cube.obj");
+  EXPECT_EQ(s.vertices.size(), 8u);
+  EXPECT_EQ(s.triangles.size(), 12u);
+  EXPECT_EQ(s.triangles[1], (mesh::Triangle{0, 2, 1}));
+  const std::string e = input_error_of([] { mesh::read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "bad.obj"); });
+  EXPECT_NE(e.find("bad.obj: line 4: expected a vertex index in range"), std::string::npos) << e;
+}
+
+TEST(SurfaceMeshing, ClosedCubeFillsItsVolumeAndAnOpenOneIsRefused) {
+  // The remeshed surface of a polyhedron keeps its planar faces, so the tets fill exactly the
+  // enclosed volume (1), all positively oriented after loading.
+  const std::string cube = scratch_file("softsim_cube.obj", kCubeObj + kTopFace);
+  io::MeshFileOptions opt;
+  opt.surface_mesher = meshing::volume_from_surface;
+  opt.target_edge = 0.4;
+  const mesh::TetMesh m = io::load_mesh_file(cube, opt);
+  const auto q = mesh::quality_report(m);
+  EXPECT_NEAR(q.total_volume, 1.0, 1e-12);
+  EXPECT_GT(q.min_volume, 0);
+  EXPECT_EQ(mesh::census(m).euler_characteristic, 2);
+  EXPECT_EQ(m.element_tags.at("region"), std::vector<int>(m.num_tets(), 1));
+
+  const std::string open = scratch_file("softsim_open_cube.obj", kCubeObj);
+  const std::string e = input_error_of([&] { io::load_mesh_file(open, opt); });
+  EXPECT_NE(e.find(open + ": expected a closed triangle surface"), std::string::npos) << e;
+  std::filesystem::remove(open);
+  // Without a surface mesher (a tool that does not link libgmsh) the file is refused by name.
+  opt.surface_mesher = nullptr;
+  const std::string refused = input_error_of([&] { io::load_mesh_file(cube, opt); });
+  EXPECT_NE(refused.find(cube + ": expected a volume mesh"), std::string::npos) << refused;
+  std::filesystem::remove(cube);
 }

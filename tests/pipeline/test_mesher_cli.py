@@ -1,12 +1,13 @@
 """The mesher executable: the command-line contract, bad input, the VTU read back by independent
 readers (meshio, vtu_arrays) and as a mesh input, binary Gmsh files."""
 import json
+import os
 import shutil
 import subprocess
 
 import pytest
 
-from conftest import ROOT, run_tool, write_json
+from conftest import ROOT, run_tool, tool, write_json
 from vtu_arrays import read_arrays
 
 CUBOID = {"source": {"kind": "cuboid", "cells": [3, 4, 5], "size": [0.03, 0.04, 0.05]}}
@@ -165,3 +166,22 @@ def test_binary_gmsh_file_gives_the_ascii_mesh(tmp_path, msh_format):
     assert a["tets"] == b["tets"] and a["element_tags"] == b["element_tags"]
     assert sorted(set(a["element_tags"]["physical"])) == [7, 9]
     assert max(abs(x - y) for p, q in zip(a["nodes"], b["nodes"]) for x, y in zip(p, q)) <= 4e-16
+
+
+def test_failed_surface_import_leaves_nothing_behind(tmp_path):
+    """An open surface (a cube without its top face) cannot be filled: exit 2 with one line
+    naming the file and Gmsh's complaint, no artifact, and nothing left in the temporary folder
+    or the working folder (the surface is meshed in memory through the Gmsh API)."""
+    work, tmp = tmp_path / "work", tmp_path / "tmp"
+    work.mkdir()
+    tmp.mkdir()
+    (work / "open.obj").write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                   "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+    write_json(work / "c.json", {"source": {"kind": "file", "path": "open.obj"}})
+    r = subprocess.run([str(tool("mesher")), "--config", "c.json", "--out", "m.json"], cwd=work,
+                       env=dict(os.environ, TMPDIR=str(tmp)), capture_output=True, text=True)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "open.obj: expected a closed triangle surface" in lines[0], r.stderr
+    assert list(tmp.iterdir()) == []
+    assert sorted(p.name for p in work.iterdir()) == ["c.json", "open.obj"]
