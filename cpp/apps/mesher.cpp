@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   info.summary = "build a cuboid of 5-tet cells (000 §2.2.1) or import a mesh; write a tet_mesh artifact";
   info.config_help =
       "  {\"source\": {\"kind\": \"cuboid\", \"cells\": [nx, ny, nz], \"size\": [lx, ly, lz] (m), \"origin\": [x, y, z]}\n"
-      "           | {\"kind\": \"file\", \"path\": \"mesh.msh|.vtk|.obj|.stl\", \"scale\": to-metres factor, \"target_edge\": h},\n"
+      "           | {\"kind\": \"file\", \"path\": \"mesh.msh|.vtk|.vtu|.obj|.stl\", \"scale\": to-metres factor, \"target_edge\": h},\n"
       "   \"sliver_threshold_deg\": 5.0,   smallest dihedral angle below which an element is flagged\n"
       "   \"vtu\": \"mesh.vtu\",             optional ParaView file\n"
       "   \"vtu_format\": \"base64\"}         \"ascii\" | \"base64\" (inline binary) | \"raw\" (appended binary)";
