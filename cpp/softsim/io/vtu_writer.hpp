@@ -26,9 +26,10 @@ const char* vtu_format_name(VtuFormat format);
 std::optional<VtuFormat> parse_vtu_format(const std::string& name);
 inline const std::vector<std::string> kVtuFormatNames = {"ascii", "base64", "raw"};
 // What the tools write unless told otherwise: binary (exact and compact), and still well-formed
-// XML that VTK (ParaView), meshio and plain XML tools read. Raw appended data is smaller and faster, but XML tools refuse
-// it, and meshio (5.x, Debian 12) misreads files with several raw appended arrays: it rewrites
-// their offsets in place and can then find an array by another's offset.
+// XML that VTK (ParaView), meshio and plain XML tools read. Raw appended data is smaller and
+// faster, but XML tools refuse it, and meshio (5.x, Debian 12) misreads files with several raw
+// appended arrays: it rewrites their offsets in place and can then find an array by another's
+// offset.
 inline constexpr VtuFormat kDefaultVtuFormat = VtuFormat::base64;
 
 // A symmetric tensor as VTK stores one in 6 components: xx, yy, zz, xy, yz, xz (the order of
