@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "common/app.hpp"
+#include "common/progress_line.hpp"
 #include "softsim/hybrid/dhd_run.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/vtu_writer.hpp"
@@ -81,7 +82,12 @@ int main(int argc, char** argv) {
       snapshot = [&](int step, double, const std::vector<double>& u, const std::vector<double>& v) {
         io::write_vtu(snapshot_path(config.output.vtu, step), mesh, vtu_fields(mesh, kinds, u, v));
       };
-    const hybrid::DhdRun run = hybrid::run_dhd(mesh, config, kinds, snapshot);
+    // Steps, simulated time and steps/s on a terminal; quiet otherwise.
+    app::ProgressLine progress_line("dhd_sim", config.explicit_solver.steps);
+    dynamics::ProgressFn progress;
+    if (progress_line.enabled() && !config.static_solver)
+      progress = [&](int steps_done, double time) { progress_line.update(steps_done, time); };
+    const hybrid::DhdRun run = hybrid::run_dhd(mesh, config, kinds, snapshot, progress);
     if (!config.output.vtu.empty()) {
       const std::vector<double>& u =
           run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement;
