@@ -24,7 +24,7 @@ namespace {
 // the key; nothing loads it).
 constexpr const char* kMeshObject = "<softsim.Mesh>";
 
-std::unique_ptr<hybrid::DhdScene> make_scene(const std::shared_ptr<PyMesh>& given, const py::object& config_value) {
+std::unique_ptr<hybrid::DhdScene> make_scene(const py::object& config_value, const std::shared_ptr<PyMesh>& given) {
   Config config = Config::from_python(config_value);
   if (given && config.json().is_object() && !config.json().contains("mesh")) config.json()["mesh"] = kMeshObject;
   return released(config.source(), [&] {
@@ -106,7 +106,8 @@ inverted element: exit 3; the scene must then be reset()).
       .def_property_readonly(
           "element_kind",
           [](const DhdScene& s) {
-            std::vector<int> k(s.kinds().begin(), s.kinds().end());
+            std::vector<int> k;
+            for (const fem::ElementKind kind : s.kinds()) k.push_back(static_cast<int>(kind));
             return py::array_t<int>(k.size(), k.data());
           },
           "Kind of each element: 0 linear, 1 tled, 2 corotational, 3 anp (the dhd_result legend).")

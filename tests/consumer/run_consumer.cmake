@@ -5,6 +5,8 @@
 #   MODE=subdirectory  add_subdirectory(SOURCE_DIR) from the consumer
 # Both check that the consumer's own compile line carries none of softsim's private flags
 # (-march=native, sanitizers): they must not leak through the usage requirements.
+# With PYTHON (and PYTHON_INSTALL_DIR) the package mode also runs use_installed.py on the
+# installed Python package.
 # Variables: MODE, SOURCE_DIR, BUILD_DIR, WORK_DIR, BUILD_TYPE, CXX_COMPILER, LAUNCHER, CXX_FLAGS
 # (CXX_FLAGS: what the consumer itself must add, e.g. the sanitizer runtime of a sanitized build).
 cmake_minimum_required(VERSION 3.18)
@@ -85,3 +87,20 @@ endif()
 
 step("run" ${WORK_DIR}/build/uniaxial_consumer)
 message("${step_output}")
+
+# The Python package of the same install, imported from the prefix alone (run from WORK_DIR, so
+# nothing of the source or build tree is on the path).
+if(MODE STREQUAL "package" AND PYTHON)
+  if(IS_ABSOLUTE "${PYTHON_INSTALL_DIR}")
+    set(python_dir ${PYTHON_INSTALL_DIR})
+  else()
+    set(python_dir ${prefix}/${PYTHON_INSTALL_DIR})
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${python_dir} PYTHONNOUSERSITE=1
+                          ${PYTHON} ${SOURCE_DIR}/tests/consumer/use_installed.py ${python_dir}
+                  WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "consumer (package): the installed Python package failed (${rc}):\n${out}")
+  endif()
+  message("${out}")
+endif()
