@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
       "   \"partition\": {\"kind\": uniform|layers|linear_fraction|tags|sphere|strain, ...},\n"
       "   \"boundary\": {\"fixed\", \"prescribed\", \"forces\", \"gravity\", \"probe\"},\n"
       "   \"solver\": {\"kind\": explicit|static, \"steps\", \"dt\" | \"safety_factor\", \"force_dt\", \"increments\", ...},\n"
-      "   \"output\": {\"vtu\", \"vtu_interval\", \"trajectories\", \"trajectory_interval\", \"velocity\"},\n"
+      "   \"output\": {\"vtu\", \"vtu_interval\", \"vtu_format\", \"trajectories\", \"trajectory_interval\", \"velocity\"},\n"
       "   \"threads\": 1, \"bench\": {\"steps\", \"threads\", \"linear_fraction\"}}\n"
       "  Full reference: cpp/apps/dhd_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {

@@ -17,13 +17,14 @@ int main(int argc, char** argv) {
       "  {\"source\": {\"kind\": \"cuboid\", \"cells\": [nx, ny, nz], \"size\": [lx, ly, lz] (m), \"origin\": [x, y, z]}\n"
       "           | {\"kind\": \"file\", \"path\": \"mesh.msh|.vtk|.obj|.stl\", \"scale\": to-metres factor, \"target_edge\": h},\n"
       "   \"sliver_threshold_deg\": 5.0,   smallest dihedral angle below which an element is flagged\n"
-      "   \"vtu\": \"mesh.vtu\"}             optional ParaView file";
+      "   \"vtu\": \"mesh.vtu\",             optional ParaView file\n"
+      "   \"vtu_format\": \"base64\"}         \"ascii\" | \"base64\" (inline binary) | \"raw\" (appended binary)";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
     const io::MesherConfig config = io::read_mesher_config(ctx.config());
     if (config.from_file) ctx.input(config.path);
     const mesh::TetMesh m = io::build_mesh(config);
     const mesh::QualityReport q = mesh::quality_report(m, config.sliver_threshold_deg);
-    if (!config.vtu.empty()) io::write_mesher_vtu(config.vtu, m);
+    if (!config.vtu.empty()) io::write_mesher_vtu(config.vtu, m, config.vtu_format);
     ctx.write(io::kMeshSchema, io::kMeshSchemaVersion, io::mesher_payload(m, q, config.source));
     std::cerr << "mesher: " << q.nodes << " nodes, " << q.tets << " tets, " << q.boundary_triangles
               << " boundary triangles, " << q.slivers.size() << " slivers\n";

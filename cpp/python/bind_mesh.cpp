@@ -49,7 +49,7 @@ std::shared_ptr<PyMesh> from_mesher_config(const Config& config) {
     if (mc.from_file) provenance.input_sha256[mc.path] = io::sha256_file(mc.path);
     auto out = std::make_shared<PyMesh>();
     out->mesh = io::build_mesh(mc);
-    if (!mc.vtu.empty()) io::write_mesher_vtu(mc.vtu, out->mesh);
+    if (!mc.vtu.empty()) io::write_mesher_vtu(mc.vtu, out->mesh, mc.vtu_format);
     out->sliver_threshold_deg = mc.sliver_threshold_deg;
     out->source = mc.source;
     out->provenance = io::provenance_json(provenance);

@@ -3,7 +3,8 @@
 // (a homogeneous deformation imposed on the boundary is reproduced exactly inside), a rigid
 // 90° rotation is force-free for TLED and corotational but not for linear elements, TLED and
 // linear agree to first order at small load, and the assembled tangent is the derivative of
-// the assembled force, its columns taking the one-shot stress increment bit for bit.
+// the assembled force, its columns taking the one-shot stress increment bit for bit; the
+// output stress and strain of every kind under uniaxial stress, rigid rotation and dilation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,8 @@
 #include "softsim/fem/assembly.hpp"
 #include "softsim/fem/cube_root.hpp"
 #include "softsim/fem/element_set.hpp"
+#include "softsim/fem/element_stress.hpp"
+#include "softsim/material/uniaxial.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
 #include "support/fields.hpp"
@@ -284,4 +287,101 @@ TEST(ElementSet, TiledSweepUpdatesEachNodeOnceAfterAllItsElements) {
   for (int e = 0; e < m.num_tets(); ++e) kinds[e] = static_cast<ElementKind>((3 * e + e / 7) % 3);
   test_scenes::expect_tiled_sweep_equals_whole_pass(
       m, kinds, fem::Material::make(kPaper, material::NeoHookeanForm::paper), affine_field(m, general_F()));
+}
+
+// ---- Element stress and strain for output (fem/element_stress.hpp).
+
+namespace {
+
+// Uniaxial stress along z by the stretch a: F = diag(t, t, a) with the lateral stretch t that
+// frees the lateral faces, and the axial Cauchy stress, from material/uniaxial.hpp (each law's
+// energy, written independently of the stress code). Linear elements report the small-strain
+// stress, which is the nominal one E (a − 1); the others σ₃₃ = P₃₃ a / J = P₃₃ / t². The
+// corotational law's P is the linear one for a diagonal stretch, so it shares the linear t.
+struct Uniaxial {
+  Eigen::Matrix3d F;
+  double sigma = 0;
+};
+Uniaxial uniaxial(const KindForm& kf, const fem::Material& m, double a) {
+  const bool neo_hookean = kf.kind == ElementKind::tled || kf.kind == ElementKind::anp;
+  const material::UniaxialSolution s =
+      neo_hookean ? material::uniaxial_neo_hookean(m.neo_hookean, a) : material::uniaxial_linear(kPaper, a);
+  Uniaxial u;
+  u.F = Eigen::Vector3d(s.lateral_stretch, s.lateral_stretch, a).asDiagonal();
+  u.sigma = kf.kind == ElementKind::linear ? s.nominal_stress
+                                           : s.nominal_stress / (s.lateral_stretch * s.lateral_stretch);
+  return u;
+}
+
+std::vector<ElementKind> all_of(const mesh::TetMesh& m, ElementKind kind) {
+  return std::vector<ElementKind>(m.num_tets(), kind);
+}
+
+}  // namespace
+
+TEST(ElementStress, UniaxialStretchGivesTheAnalyticStressInEveryElementOfEveryKind) {
+  const auto m = cuboid(2, 2, 3, 0.02, 0.02, 0.03);
+  const double E = kPaper.youngs_modulus;
+  for (const KindForm& kf : kAllKinds)
+    for (const double a : {1.2, 0.8}) {
+      const fem::Material mat = fem::Material::make(kPaper, kf.form);
+      const Uniaxial ua = uniaxial(kf, mat, a);
+      fem::ElementStress out(m, all_of(m, kf.kind), mat);
+      out.evaluate(affine_field(m, ua.F).data());
+      const Eigen::Matrix3d sigma = Eigen::Vector3d(0, 0, ua.sigma).asDiagonal();
+      const Eigen::Matrix3d strain = 0.5 * (ua.F * ua.F - Eigen::Matrix3d::Identity());
+      ASSERT_GT(std::fabs(ua.sigma), 0.05 * E);
+      for (int e = 0; e < m.num_tets(); ++e) {
+        EXPECT_LT((out.stress()[e] - sigma).cwiseAbs().maxCoeff(), 1e-9 * E) << name_of(kf) << " a=" << a << " e=" << e;
+        EXPECT_LT((out.strain()[e] - strain).cwiseAbs().maxCoeff(), 1e-14) << name_of(kf) << " e=" << e;
+        EXPECT_NEAR(out.von_mises()[e], std::fabs(ua.sigma), 1e-9 * E) << name_of(kf) << " e=" << e;
+      }
+    }
+}
+
+TEST(ElementStress, RigidRotationIsStressFreeForTledCorotationalAndAnpButNotLinear) {
+  // A rotation alone (40° about a skew axis): zero stress and strain for the objective laws,
+  // and for a rotated uniaxial stretch Q F the stress rotated with it, Q σ(F) Qᵀ. Linear
+  // elements take the rotation for strain.
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  const double E = kPaper.youngs_modulus;
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (const KindForm& kf : kAllKinds) {
+    const fem::Material mat = fem::Material::make(kPaper, kf.form);
+    fem::ElementStress out(m, all_of(m, kf.kind), mat);
+    out.evaluate(affine_field(m, Q).data());
+    double largest = 0;
+    for (int e = 0; e < m.num_tets(); ++e) {
+      largest = std::max(largest, out.stress()[e].cwiseAbs().maxCoeff());
+      EXPECT_LT(out.strain()[e].cwiseAbs().maxCoeff(), 1e-14) << name_of(kf);
+    }
+    if (kf.kind == ElementKind::linear) {
+      EXPECT_GT(largest, 0.1 * E) << "small-strain elements must see the rotation as strain";
+      continue;
+    }
+    EXPECT_LT(largest, 1e-11 * E) << name_of(kf);
+    const Uniaxial ua = uniaxial(kf, mat, 1.2);
+    out.evaluate(affine_field(m, Q * ua.F).data());
+    const Eigen::Matrix3d rotated = Q * Eigen::Vector3d(0, 0, ua.sigma).asDiagonal() * Q.transpose();
+    for (int e = 0; e < m.num_tets(); ++e)
+      EXPECT_LT((out.stress()[e] - rotated).cwiseAbs().maxCoeff(), 1e-9 * E) << name_of(kf) << " e=" << e;
+  }
+}
+
+TEST(ElementStress, VonMisesVanishesForHydrostaticStateAndMeasuresShear) {
+  EXPECT_EQ(fem::von_mises_stress(-250.0 * Eigen::Matrix3d::Identity()), 0.0);
+  Eigen::Matrix3d shear = Eigen::Matrix3d::Zero();
+  shear(0, 1) = shear(1, 0) = 100.0;
+  EXPECT_NEAR(fem::von_mises_stress(shear), std::sqrt(3.0) * 100.0, 1e-12);  // σ_vM = √3 τ
+  // A uniform dilation loads every kind hydrostatically: a pressure, no equivalent stress.
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  for (const KindForm& kf : kAllKinds) {
+    fem::ElementStress out(m, all_of(m, kf.kind), fem::Material::make(kPaper, kf.form));
+    out.evaluate(affine_field(m, 1.1 * Eigen::Matrix3d::Identity()).data());
+    for (int e = 0; e < m.num_tets(); ++e) {
+      const double pressure = out.stress()[e].trace() / 3.0;
+      EXPECT_GT(pressure, 0.01 * kPaper.youngs_modulus) << name_of(kf);
+      EXPECT_LT(out.von_mises()[e], 1e-12 * pressure) << name_of(kf);
+    }
+  }
 }

@@ -19,9 +19,11 @@
 #include "softsim/hybrid/dhd_scene.hpp"
 #include "softsim/hybrid/partition.hpp"
 #include "softsim/io/artifact.hpp"
+#include "softsim/io/atomic_file.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/mesh/cuboid.hpp"
+#include "softsim/mesh/vtu_reader.hpp"
 
 #include "support/fields.hpp"
 #include "support/scenes.hpp"
@@ -282,6 +284,8 @@ TEST(Config, StrictReadingNamesThePointer) {
   expect_error({{"mesh", "m"}, {"material", {{"model", "linear"}}}, {"partition", {{"linear_fraction", 0.5}}}}, "/partition");
   expect_error({{"mesh", "m"}, {"solver", {{"kind", "static"}, {"steps", 10}}}}, "/solver/steps");
   expect_error({{"mesh", "m"}, {"partition", {{"linear_fraction", 1.5}}}}, "/partition/linear_fraction");
+  expect_error({{"mesh", "m"}, {"output", {{"vtu", "a.vtu"}, {"vtu_format", "binary"}}}}, "/output/vtu_format");
+  expect_error({{"mesh", "m"}, {"output", {{"vtu_format", "ascii"}}}}, "/output");
 }
 
 TEST(Run, HybridWithZeroLinearShareIsExactlyTled) {
@@ -318,6 +322,22 @@ TEST(App, ExitCodesAndArtifact) {
   EXPECT_EQ(a.payload().at("element_kind").size(), static_cast<std::size_t>(m.num_tets()));
   for (const char* f : {"final.vtu", "final_000000.vtu", "final_000025.vtu", "final_000050.vtu"})
     EXPECT_TRUE(fs::exists(s.path(f))) << f;
+  // The series lists each snapshot, by its name beside the .pvd, at its simulated time n dt.
+  const std::string pvd = io::read_text_file(s.path("final.pvd"));
+  const double dt = a.payload().at("solver").get_double("dt");
+  std::size_t at = 0;
+  for (const int step : {0, 25, 50}) {
+    at = pvd.find("<DataSet timestep=\"", at);
+    ASSERT_NE(at, std::string::npos) << pvd;
+    at += 19;
+    EXPECT_EQ(std::strtod(pvd.c_str() + at, nullptr), step * dt) << pvd;
+    char file[32];
+    std::snprintf(file, sizeof file, "file=\"final_%06d.vtu\"", step);
+    EXPECT_EQ(pvd.find(file, at), pvd.find("file=", at)) << pvd;
+  }
+  EXPECT_EQ(pvd.find("<DataSet", at), std::string::npos) << "three snapshots";
+  // The final state reads back as a mesh (inline base64 by default).
+  EXPECT_EQ(mesh::read_vtu(io::read_text_file(s.path("final.vtu")), "final.vtu").nodes, m.nodes);
   EXPECT_EQ(a.document().at("provenance").at("inputs").size(), 1u);
 
   cfg["output"] = nlohmann::json::object();

@@ -10,12 +10,15 @@
 #include <fstream>
 
 #include "softsim/io/artifact.hpp"
+#include "softsim/io/base64.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/git_commit.hpp"
 #include "softsim/io/json_reader.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/result_fields.hpp"
 #include "softsim/io/sha256.hpp"
+
+#include "support/input_error.hpp"
 
 using namespace softsim;
 
@@ -26,27 +29,40 @@ TEST(Sha256, KnownVectors) {
             "41edece42d63e8d9bf515a9ba6932e1c20cbc9f5a5d134645adb5db1b9737ea3");
 }
 
-namespace {
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
+TEST(Base64, Rfc4648VectorsAndRoundTrip) {
+  const std::pair<std::string, std::string> vectors[] = {{"", ""},          {"f", "Zg=="},        {"fo", "Zm8="},
+                                                         {"foo", "Zm9v"},   {"foob", "Zm9vYg=="}, {"fooba", "Zm9vYmE="},
+                                                         {"foobar", "Zm9vYmFy"}};
+  for (const auto& [plain, encoded] : vectors) {
+    EXPECT_EQ(io::base64_encode(plain), encoded);
+    EXPECT_EQ(io::base64_decode(encoded), plain);
   }
-  return "";
+  std::string bytes;
+  for (int i = 0; i < 256; ++i) bytes.push_back(static_cast<char>(i));
+  EXPECT_EQ(io::base64_decode(io::base64_encode(bytes)), bytes);
 }
-}  // namespace
+
+TEST(Base64, DecodesSeparatelyPaddedStreamsAndRefusesGarbage) {
+  // VTK's header-then-data layout when the two are encoded apart; whitespace is skipped.
+  EXPECT_EQ(io::base64_decode("Zg==\n  Zm9v Yg=="), std::string("ffoob"));
+  EXPECT_EQ(io::base64_decode("Zm9"), std::nullopt);     // a group cut short
+  EXPECT_EQ(io::base64_decode("Zm9v!A=="), std::nullopt); // not the alphabet
+  EXPECT_EQ(io::base64_decode("Z==="), std::nullopt);     // padding cannot fill three places
+  EXPECT_EQ(io::base64_decode("Zg=a"), std::nullopt);     // data after padding within a group
+}
+
+using test_support::input_error_of;
 
 TEST(JsonReader, MissingFieldNamesPointer) {
   const nlohmann::json j = {{"a", {{"b", 1}}}};
   io::JsonReader r(j, "cfg.json");
-  EXPECT_EQ(message_of([&] { r.at("a").at("c"); }), "cfg.json: /a/c: missing required field");
+  EXPECT_EQ(input_error_of([&] { r.at("a").at("c"); }), "cfg.json: /a/c: missing required field");
 }
 
 TEST(JsonReader, WrongTypeNamesExpectation) {
   const nlohmann::json j = {{"E", "soft"}};
   io::JsonReader r(j, "cfg.json");
-  EXPECT_EQ(message_of([&] { r.get_double("E"); }),
+  EXPECT_EQ(input_error_of([&] { r.get_double("E"); }),
             "cfg.json: /E: expected a number, got string \"soft\"");
 }
 
@@ -54,7 +70,7 @@ TEST(JsonReader, UnknownFieldRejected) {
   const nlohmann::json j = {{"E", 1.0}, {"nu_typo", 0.3}};
   io::JsonReader r(j, "cfg.json");
   r.get_double("E");
-  EXPECT_EQ(message_of([&] { r.reject_unknown(); }), "cfg.json: /nu_typo: unknown field");
+  EXPECT_EQ(input_error_of([&] { r.reject_unknown(); }), "cfg.json: /nu_typo: unknown field");
 }
 
 TEST(JsonReader, ObjectWithOnlyOptionalMembersRefusesAnotherType) {
@@ -63,25 +79,25 @@ TEST(JsonReader, ObjectWithOnlyOptionalMembersRefusesAnotherType) {
   const nlohmann::json j = {{"solver", "implicit"}};
   const io::JsonReader solver = io::JsonReader(j, "cfg.json").at("solver");
   EXPECT_EQ(solver.get_string("kind", "implicit"), "implicit");
-  EXPECT_NE(message_of([&] { solver.reject_unknown(); }).find("cfg.json: /solver: expected an object"),
+  EXPECT_NE(input_error_of([&] { solver.reject_unknown(); }).find("cfg.json: /solver: expected an object"),
             std::string::npos);
 }
 
 TEST(JsonReader, PositiveAndChoiceChecks) {
   const nlohmann::json j = {{"E", -3.0}, {"kind", "cube"}, {"n", 2.5}};
   io::JsonReader r(j, "c.json");
-  EXPECT_NE(message_of([&] { r.get_positive("E"); }).find("/E: expected a positive number"), std::string::npos);
-  EXPECT_NE(message_of([&] { r.get_choice("kind", {"cuboid", "file"}); }).find("one of \"cuboid\", \"file\""),
+  EXPECT_NE(input_error_of([&] { r.get_positive("E"); }).find("/E: expected a positive number"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { r.get_choice("kind", {"cuboid", "file"}); }).find("one of \"cuboid\", \"file\""),
             std::string::npos);
-  EXPECT_NE(message_of([&] { r.get_int("n"); }).find("expected an integer"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { r.get_int("n"); }).find("expected an integer"), std::string::npos);
 }
 
 TEST(JsonReader, TruncatedFileIsInputError) {
   const auto path = std::filesystem::temp_directory_path() / "softsim_truncated.json";
   std::ofstream(path) << "{\"a\": [1, 2";
-  EXPECT_NE(message_of([&] { io::JsonReader::parse_file(path.string()); }).find("invalid JSON"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { io::JsonReader::parse_file(path.string()); }).find("invalid JSON"), std::string::npos);
   std::ofstream(path) << "{\"a\": NaN}";
-  EXPECT_NE(message_of([&] { io::JsonReader::parse_file(path.string()); }).find("invalid JSON"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { io::JsonReader::parse_file(path.string()); }).find("invalid JSON"), std::string::npos);
   std::filesystem::remove(path);
 }
 
@@ -144,7 +160,7 @@ nlohmann::json unit_tet_payload() {
           {"element_tags", {{"layer", {0}}}}};
 }
 std::string mesh_error(const nlohmann::json& payload) {
-  return message_of([&] { io::mesh_from_json(io::JsonReader(payload, "m.json", "/payload")); });
+  return input_error_of([&] { io::mesh_from_json(io::JsonReader(payload, "m.json", "/payload")); });
 }
 }  // namespace
 

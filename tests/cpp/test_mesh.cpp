@@ -3,15 +3,23 @@
 // and the importers on the real organ meshes shipped in experiments/data/meshes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 
+#include "softsim/io/atomic_file.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/mesh_files.hpp"
+#include "softsim/io/vtu_writer.hpp"
 #include "softsim/mesh/cuboid.hpp"
 #include "softsim/mesh/gmsh_reader.hpp"
 #include "softsim/mesh/quality.hpp"
 #include "softsim/mesh/surface.hpp"
 #include "softsim/mesh/vtk_legacy_reader.hpp"
+#include "softsim/mesh/vtu_reader.hpp"
+
+#include "support/input_error.hpp"
 
 using namespace softsim;
 
@@ -23,6 +31,8 @@ mesh::TetMesh cuboid(int nx, int ny, int nz, Eigen::Vector3d size) {
   return mesh::make_cuboid(s);
 }
 const std::string kMeshDir = std::string(SOFTSIM_SOURCE_DIR) + "/experiments/data/meshes/";
+const std::string kFixtureDir = std::string(SOFTSIM_SOURCE_DIR) + "/tests/data/meshes/";
+using test_support::input_error_of;
 }  // namespace
 
 TEST(Cuboid, PaperCounts120NodesAnd300Tets) {
@@ -186,4 +196,137 @@ TEST(VtkReader, Version51OffsetsConnectivityLayout) {
   auto m = mesh::read_vtk_legacy(text, "inline51.vtk");
   ASSERT_EQ(m.num_tets(), 2);
   EXPECT_EQ(m.element_tags.at("materials"), (std::vector<int>{1, 3}));
+}
+
+TEST(VtkReader, FieldDataAsVtk9WritesItTagsIntegerCellArraysAndSkipsTheRest) {
+  // Written by VTK 9.1 itself (tests/data/meshes/make_vtk_fixtures.py): the cell arrays are a
+  // FIELD block (an int, a 64-bit int and a 6-component double array with METADATA), the point
+  // data a VECTORS array, and one cell is a triangle.
+  const std::string path = kFixtureDir + "vtk9_field.vtk";
+  const auto m = mesh::read_vtk_legacy(io::read_text_file(path), path);
+  ASSERT_EQ(m.num_tets(), 2);
+  EXPECT_EQ(m.num_nodes(), 5);  // the triangle's own point is dropped
+  EXPECT_EQ(m.tets[1], (mesh::Tet{1, 2, 3, 4}));
+  EXPECT_EQ(m.element_tags.at("region"), (std::vector<int>{3, 5}));
+  EXPECT_EQ(m.element_tags.at("material"), (std::vector<int>{1, 2}));
+  EXPECT_EQ(m.element_tags.count("stress"), 0u);
+}
+
+TEST(VtkReader, FieldArraysMustMatchTheCellCount) {
+  const std::string text =
+      "# vtk DataFile Version 3.0\ntitle\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+      "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 5\n4 0 2 1 3\nCELL_TYPES 1\n10\n"
+      "CELL_DATA 1\nFIELD FieldData 1\nregion 1 2 int\n4 5\n";
+  const std::string e = input_error_of([&] { mesh::read_vtk_legacy(text, "short.vtk"); });
+  EXPECT_NE(e.find("short.vtk: line 13: expected 1 tuples"), std::string::npos) << e;
+}
+
+namespace {
+// A mesh whose coordinates have no short decimal form (thirds, and a perturbation), with tags.
+mesh::TetMesh awkward_mesh() {
+  mesh::TetMesh m = cuboid(3, 2, 2, {0.1, 0.2 / 3.0, 1.0 / 7.0});
+  for (int i = 0; i < m.num_nodes(); ++i) m.nodes[i] += 1e-3 * Eigen::Vector3d(std::sin(i), std::cos(3.0 * i), M_PI);
+  m.element_tags["negative"] = std::vector<int>(m.num_tets(), -2147483647);
+  return m;
+}
+bool same_bits(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::memcmp(a.data(), b.data(), 24) == 0; }
+}  // namespace
+
+TEST(VtuRoundTrip, EveryFormatReadsBackBitForBit) {
+  const mesh::TetMesh m = awkward_mesh();
+  io::VtuFields fields;
+  fields.cell_ints = m.element_tags;
+  fields.cell_scalars["skipped"] = std::vector<double>(m.num_tets(), 1.5);
+  fields.point_vectors["displacement"] = m.nodes;
+  const auto dir = std::filesystem::temp_directory_path();
+  for (const auto format : {io::VtuFormat::ascii, io::VtuFormat::base64, io::VtuFormat::raw}) {
+    const std::string path = (dir / (std::string("softsim_roundtrip_") + io::vtu_format_name(format) + ".vtu")).string();
+    io::write_vtu(path, m, fields, format);
+    const auto back = mesh::read_vtu(io::read_text_file(path), path);
+    std::filesystem::remove(path);
+    ASSERT_EQ(back.num_nodes(), m.num_nodes()) << io::vtu_format_name(format);
+    for (int i = 0; i < m.num_nodes(); ++i)
+      EXPECT_TRUE(same_bits(back.nodes[i], m.nodes[i])) << io::vtu_format_name(format) << " node " << i;
+    EXPECT_EQ(back.tets, m.tets) << io::vtu_format_name(format);
+    EXPECT_EQ(back.element_tags, m.element_tags) << io::vtu_format_name(format);
+  }
+}
+
+TEST(VtuReader, ReadsUncompressedFilesWrittenByVtk) {
+  // Inline base64 with UInt64 headers, and raw appended data with UInt32 headers, both with
+  // VTK's <InformationKey> elements inside DataArrays and a triangle among the cells.
+  for (const char* file : {"vtk9_base64.vtu", "vtk9_raw.vtu"}) {
+    const std::string path = kFixtureDir + file;
+    const auto m = mesh::read_vtu(io::read_text_file(path), path);
+    ASSERT_EQ(m.num_tets(), 2) << file;
+    EXPECT_EQ(m.num_nodes(), 5) << file;
+    EXPECT_EQ(m.nodes[4], Eigen::Vector3d(1, 1, 1)) << file;
+    EXPECT_EQ(m.tets[1], (mesh::Tet{1, 2, 3, 4})) << file;
+    EXPECT_EQ(m.element_tags.at("region"), (std::vector<int>{3, 5})) << file;
+    EXPECT_EQ(m.element_tags.at("material"), (std::vector<int>{1, 2})) << file;
+  }
+}
+
+TEST(VtuReader, RefusesCompressedTruncatedAndMalformedFilesNamingThem) {
+  const mesh::TetMesh m = cuboid(1, 1, 1, {1, 1, 1});
+  const std::string path = (std::filesystem::temp_directory_path() / "softsim_bad.vtu").string();
+  io::write_vtu(path, m, {}, io::VtuFormat::raw);
+  const std::string raw = io::read_text_file(path);
+  io::write_vtu(path, m, {}, io::VtuFormat::base64);
+  const std::string b64 = io::read_text_file(path);
+  std::filesystem::remove(path);
+  const auto error = [](const std::string& text) { return input_error_of([&] { mesh::read_vtu(text, "bad.vtu"); }); };
+
+  std::string compressed = b64;
+  compressed.replace(compressed.find("header_type"), 0, "compressor=\"vtkZLibDataCompressor\" ");
+  EXPECT_NE(error(compressed).find("bad.vtu: line 2: expected an uncompressed file"), std::string::npos)
+      << error(compressed);
+  const std::string cut = raw.substr(0, raw.size() - 40);  // the types block cut short
+  EXPECT_NE(error(cut).find("in DataArray \"types\""), std::string::npos) << error(cut);
+  io::write_vtu(path, m, {}, io::VtuFormat::ascii);
+  const std::string ascii = io::read_text_file(path);
+  std::filesystem::remove(path);
+  const std::string cut_text = ascii.substr(0, ascii.find("<Points>") + 60);  // ends inside the points
+  EXPECT_NE(error(cut_text).find("bad.vtu: line "), std::string::npos) << error(cut_text);
+  std::string garbage = b64;
+  garbage.replace(garbage.find("format=\"binary\">\n") + 17, 4, "!!!!");
+  EXPECT_NE(error(garbage).find("base64"), std::string::npos) << error(garbage);
+  EXPECT_NE(error("<VTKFile type=\"PolyData\">").find("expected type=\"UnstructuredGrid\""), std::string::npos);
+  EXPECT_NE(error("not xml at all").find("bad.vtu"), std::string::npos);
+}
+
+TEST(GmshReader, BinaryFilesHoldTheSameMeshAsAscii) {
+  // tests/data/meshes/two_boxes.geo meshed once by Gmsh and saved as ASCII and binary 4.1 and
+  // 2.2: two physical volumes (7, 9) and a physical surface whose triangles are skipped.
+  const auto read = [](const std::string& name) {
+    const std::string path = kFixtureDir + name;
+    return mesh::read_gmsh(io::read_text_file(path), path);
+  };
+  const mesh::TetMesh ascii = read("two_boxes_ascii41.msh");
+  ASSERT_EQ(ascii.num_tets(), 200);
+  const auto& physical = ascii.element_tags.at("physical");
+  EXPECT_EQ(std::count(physical.begin(), physical.end(), 7) + std::count(physical.begin(), physical.end(), 9), 200);
+  EXPECT_GT(std::count(physical.begin(), physical.end(), 7), 0);
+  EXPECT_GT(std::count(physical.begin(), physical.end(), 9), 0);
+  for (const char* name : {"two_boxes_bin41.msh", "two_boxes_ascii22.msh", "two_boxes_bin22.msh"}) {
+    const mesh::TetMesh m = read(name);
+    EXPECT_EQ(m.tets, ascii.tets) << name;
+    EXPECT_EQ(m.element_tags, ascii.element_tags) << name;
+    ASSERT_EQ(m.num_nodes(), ascii.num_nodes()) << name;
+    // ASCII files hold 16 significant digits: one unit in the 16th digit of the unit boxes.
+    for (int i = 0; i < m.num_nodes(); ++i) EXPECT_LE((m.nodes[i] - ascii.nodes[i]).norm(), 4e-16) << name << " node " << i;
+  }
+}
+
+TEST(GmshReader, TruncatedBinaryFileNamesTheByte) {
+  const std::string path = kFixtureDir + "two_boxes_bin41.msh";
+  const std::string bytes = io::read_text_file(path);
+  for (const std::size_t keep : {bytes.find("$Nodes") + 20, bytes.find("$Elements") + 100}) {
+    const std::string e = input_error_of([&] { mesh::read_gmsh(bytes.substr(0, keep), "cut.msh"); });
+    EXPECT_NE(e.find("cut.msh: byte "), std::string::npos) << e;
+  }
+  std::string swapped = bytes;  // the int 1 of another byte order
+  const std::size_t one = swapped.find("4.1 1 8\n") + 8;
+  std::swap(swapped[one], swapped[one + 3]);
+  EXPECT_NE(input_error_of([&] { mesh::read_gmsh(swapped, "be.msh"); }).find("this machine's byte order"), std::string::npos);
 }

@@ -1,10 +1,13 @@
-"""The mesher executable: the command-line contract, bad input, and the VTU read back by an
-independent reader (meshio)."""
+"""The mesher executable: the command-line contract, bad input, the VTU read back by independent
+readers (meshio, vtu_arrays) and as a mesh input, binary Gmsh files."""
 import json
+import shutil
+import subprocess
 
 import pytest
 
 from conftest import ROOT, run_tool, write_json
+from vtu_arrays import read_arrays
 
 CUBOID = {"source": {"kind": "cuboid", "cells": [3, 4, 5], "size": [0.03, 0.04, 0.05]}}
 
@@ -54,18 +57,40 @@ def test_imported_mesh_records_input_hash(tmp_path):
     assert prov["inputs"][src] == hashlib.sha256((ROOT / src).read_bytes()).hexdigest()
 
 
-def test_vtu_read_back_with_meshio(tmp_path):
-    meshio = pytest.importorskip("meshio")
-    cfg = dict(CUBOID, vtu=str(tmp_path / "m.vtu"))
+@pytest.mark.parametrize("vtu_format", ["ascii", "base64", "raw"])
+def test_vtu_read_back_with_an_independent_reader(tmp_path, vtu_format):
+    cfg = dict(CUBOID, vtu=str(tmp_path / "m.vtu"), vtu_format=vtu_format)
     out = tmp_path / "m.json"
     r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", cfg), "--out", out)
     assert r.returncode == 0, r.stderr
-    m = meshio.read(tmp_path / "m.vtu")
     pl = json.loads(out.read_text())["payload"]
-    assert m.points.shape == (120, 3)
-    assert m.cells_dict["tetra"].shape == (300, 4)
-    assert (m.cells_dict["tetra"] == pl["tets"]).all()
-    assert list(m.cell_data_dict["layer"]["tetra"]) == pl["element_tags"]["layer"]
+    a = read_arrays(tmp_path / "m.vtu")
+    assert (a["Points"] == pl["nodes"]).all()  # bit for bit in every encoding (ASCII: shortest exact digits)
+    assert (a["connectivity"].reshape(-1, 4) == pl["tets"]).all()
+    assert list(a["layer"][:, 0]) == pl["element_tags"]["layer"]
+    if vtu_format != "raw":  # meshio 5 misreads raw appended files with several arrays
+        meshio = pytest.importorskip("meshio")
+        m = meshio.read(tmp_path / "m.vtu")
+        assert (m.points == pl["nodes"]).all()
+        assert (m.cells_dict["tetra"] == pl["tets"]).all()
+        assert list(m.cell_data_dict["layer"]["tetra"]) == pl["element_tags"]["layer"]
+
+
+@pytest.mark.parametrize("vtu_format", ["ascii", "base64", "raw"])
+def test_vtu_written_by_mesher_is_a_mesh_input(tmp_path, vtu_format):
+    """mesher's own VTU read back as a mesh file gives the same nodes, tets and element tags
+    (node sets other than "boundary" are not in a VTU)."""
+    cfg = dict(CUBOID, vtu=str(tmp_path / "m.vtu"), vtu_format=vtu_format)
+    r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", cfg), "--out", tmp_path / "m.json")
+    assert r.returncode == 0, r.stderr
+    cfg2 = {"source": {"kind": "file", "path": str(tmp_path / "m.vtu")}}
+    r = run_tool("mesher", "--config", write_json(tmp_path / "c2.json", cfg2), "--out", tmp_path / "m2.json")
+    assert r.returncode == 0, r.stderr
+    a = json.loads((tmp_path / "m.json").read_text())["payload"]
+    b = json.loads((tmp_path / "m2.json").read_text())["payload"]
+    assert a["nodes"] == b["nodes"] and a["tets"] == b["tets"] and a["boundary"] == b["boundary"]
+    assert a["element_tags"] == b["element_tags"]
+    assert a["node_sets"]["boundary"] == b["node_sets"]["boundary"]
 
 
 BAD_CONFIGS = {
@@ -80,6 +105,7 @@ BAD_CONFIGS = {
     "missing_file": ({"source": {"kind": "file", "path": "no/such/mesh.msh"}}, "no/such/mesh.msh: cannot open file"),
     "not_a_mesh": ({"source": {"kind": "file", "path": "CMakeLists.txt"}}, "expected a mesh file"),
     "nan_literal": ('{"source": {"kind": "cuboid", "cells": [1,1,1], "size": [NaN, 1, 1]}}', "invalid JSON"),
+    "unknown_vtu_format": ({**CUBOID, "vtu": "m.vtu", "vtu_format": "binary"}, '/vtu_format: expected one of "ascii", "base64", "raw"'),
 }
 
 
@@ -129,3 +155,25 @@ def test_closed_obj_surface_becomes_a_valid_volume(tmp_path):
     # Remeshing the surface moves it slightly; 2 % of the volume is far above that and far below
     # any gross failure (holes, missing regions).
     assert abs(q["total_volume"] - 1.147e-3) < 0.02 * 1.147e-3
+
+
+@pytest.mark.skipif(shutil.which("gmsh") is None, reason="gmsh is not installed")
+@pytest.mark.parametrize("msh_format", ["msh41", "msh22"])
+def test_binary_gmsh_file_gives_the_ascii_mesh(tmp_path, msh_format):
+    """The installed Gmsh saves one mesh as ASCII and as binary: mesher reads both to the same
+    tets and tags, and nodes equal up to the ASCII file's 16 significant digits."""
+    geo = ROOT / "tests/data/meshes/two_boxes.geo"
+    subprocess.run(["gmsh", "-3", str(geo), "-format", "msh41", "-o", str(tmp_path / "a.msh"), "-v", "0"], check=True)
+    payloads = {}
+    for name, extra in [("ascii", []), ("binary", ["-bin"])]:
+        path = tmp_path / f"{name}.msh"
+        subprocess.run(["gmsh", str(tmp_path / "a.msh"), "-save", *extra, "-format", msh_format, "-o", str(path),
+                        "-v", "0"], check=True)
+        cfg = write_json(tmp_path / f"{name}.json", {"source": {"kind": "file", "path": str(path)}})
+        r = run_tool("mesher", "--config", cfg, "--out", tmp_path / f"{name}_mesh.json")
+        assert r.returncode == 0, r.stderr
+        payloads[name] = json.loads((tmp_path / f"{name}_mesh.json").read_text())["payload"]
+    a, b = payloads["ascii"], payloads["binary"]
+    assert a["tets"] == b["tets"] and a["element_tags"] == b["element_tags"]
+    assert sorted(set(a["element_tags"]["physical"])) == [7, 9]
+    assert max(abs(x - y) for p, q in zip(a["nodes"], b["nodes"]) for x, y in zip(p, q)) <= 4e-16

@@ -290,6 +290,9 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   out.vtu_interval = o->get_int32("vtu_interval", 0);
   o->require(out.vtu_interval >= 0, "vtu_interval", "a non-negative step count");
   if (out.vtu_interval > 0 && out.vtu.empty()) o->fail("a \"vtu\" path together with \"vtu_interval\"");
+  out.vtu_format = *io::parse_vtu_format(
+      o->get_choice("vtu_format", io::kVtuFormatNames, io::vtu_format_name(io::kDefaultVtuFormat)));
+  if (o->has("vtu_format") && out.vtu.empty()) o->fail("a \"vtu\" path together with \"vtu_format\"");
   if (auto traj = o->optional("trajectories")) {
     for (std::size_t i = 0; i < traj->size(); ++i) {
       const io::JsonReader e = (*traj)[i];

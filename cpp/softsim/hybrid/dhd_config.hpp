@@ -11,6 +11,7 @@
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/hybrid/partition.hpp"
 #include "softsim/io/json_reader.hpp"
+#include "softsim/io/vtu_writer.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::hybrid {
@@ -27,6 +28,7 @@ struct ExplicitConfig {
 struct OutputConfig {
   std::string vtu;
   int vtu_interval = 0;
+  io::VtuFormat vtu_format = io::kDefaultVtuFormat;
   std::vector<int> trajectory_nodes;
   int trajectory_interval = 1;
   bool velocity = false;

@@ -1,8 +1,7 @@
 #pragma once
-// A dhd_sim run with the ParaView output its config asks for ("output": "vtu", "vtu_interval"):
-// snapshots every vtu_interval steps and the final state, each with the displacement, the
-// velocity, the element kind and the region of every element. Shared by dhd_sim and the Python
-// API so that the same config writes the same files.
+// A dhd_sim run with the ParaView output its config asks for (output.vtu, vtu_interval,
+// vtu_format: hybrid/result_vtu.hpp). Shared by dhd_sim and the Python API so that the same
+// config writes the same files.
 #include "softsim/hybrid/dhd_run.hpp"
 
 namespace softsim::hybrid {

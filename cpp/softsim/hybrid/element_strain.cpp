@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "softsim/fem/element_stress.hpp"
 #include "softsim/fem/tet_geometry.hpp"
 
 namespace softsim::hybrid {
@@ -20,8 +21,7 @@ std::vector<double> element_strain(const mesh::TetMesh& mesh, const std::vector<
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H.transpose() * H, Eigen::EigenvaluesOnly);
       out[e] = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
     } else {
-      const Eigen::Matrix3d E = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(E, Eigen::EigenvaluesOnly);
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(fem::green_lagrange_strain(F), Eigen::EigenvaluesOnly);
       out[e] = eig.eigenvalues().cwiseAbs().maxCoeff();
     }
   }

@@ -11,6 +11,7 @@
 #include "softsim/mesh/surface.hpp"
 #include "softsim/mesh/text_tokens.hpp"
 #include "softsim/mesh/vtk_legacy_reader.hpp"
+#include "softsim/mesh/vtu_reader.hpp"
 
 namespace softsim::io {
 
@@ -124,10 +125,12 @@ mesh::TetMesh load_mesh_file(const std::string& path, const MeshFileOptions& opt
     m = mesh::read_gmsh(read_text_file(path), path);
   } else if (ext == ".vtk") {
     m = mesh::read_vtk_legacy(read_text_file(path), path);
+  } else if (ext == ".vtu") {
+    m = mesh::read_vtu(read_text_file(path), path);
   } else if (ext == ".obj" || ext == ".stl") {
     m = mesh_surface_with_gmsh(path, opt);
   } else {
-    throw InputError(path + ": expected a mesh file (.msh, .vtk, .obj or .stl), got extension \"" + ext + "\"");
+    throw InputError(path + ": expected a mesh file (.msh, .vtk, .vtu, .obj or .stl), got extension \"" + ext + "\"");
   }
   mesh::scale(m, opt.scale);
   mesh::orient_positively(m, path);

@@ -42,6 +42,8 @@ MesherConfig read_mesher_config(const JsonReader& cfg) {
   MesherConfig c;
   c.sliver_threshold_deg = cfg.get_positive("sliver_threshold_deg", c.sliver_threshold_deg);
   c.vtu = cfg.get_string("vtu", "");
+  c.vtu_format =
+      *parse_vtu_format(cfg.get_choice("vtu_format", kVtuFormatNames, vtu_format_name(kDefaultVtuFormat)));
   const JsonReader source = cfg.at("source");
   cfg.reject_unknown();
   if (source.get_choice("kind", {"cuboid", "file"}) == "cuboid")
@@ -62,10 +64,10 @@ nlohmann::json mesher_payload(const mesh::TetMesh& m, const mesh::QualityReport&
   return payload;
 }
 
-void write_mesher_vtu(const std::string& path, const mesh::TetMesh& m) {
+void write_mesher_vtu(const std::string& path, const mesh::TetMesh& m, VtuFormat format) {
   VtuFields fields;
   fields.cell_ints = m.element_tags;
-  write_vtu(path, m, fields);
+  write_vtu(path, m, fields, format);
 }
 
 }  // namespace softsim::io

@@ -8,6 +8,7 @@
 
 #include "softsim/io/json_reader.hpp"
 #include "softsim/io/mesh_files.hpp"
+#include "softsim/io/vtu_writer.hpp"
 #include "softsim/mesh/cuboid.hpp"
 #include "softsim/mesh/quality.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
@@ -21,6 +22,7 @@ struct MesherConfig {
   MeshFileOptions file;
   double sliver_threshold_deg = 5.0;
   std::string vtu;           // optional ParaView file ("" = none)
+  VtuFormat vtu_format = kDefaultVtuFormat;
   nlohmann::json source;     // the payload's "source" member
 };
 
@@ -35,6 +37,6 @@ nlohmann::json mesher_payload(const mesh::TetMesh& mesh, const mesh::QualityRepo
                               const nlohmann::json& source);
 
 // The mesh as a ParaView file with its element tags as cell data (the config's "vtu").
-void write_mesher_vtu(const std::string& path, const mesh::TetMesh& mesh);
+void write_mesher_vtu(const std::string& path, const mesh::TetMesh& mesh, VtuFormat format = kDefaultVtuFormat);
 
 }  // namespace softsim::io

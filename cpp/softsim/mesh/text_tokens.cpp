@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 #include "softsim/io/errors.hpp"
 
@@ -25,8 +26,9 @@ bool TextTokens::at_end() {
 
 void TextTokens::fail(const std::string& expected, const std::string& got) const {
   std::string shown = got.size() > 40 ? got.substr(0, 37) + "..." : got;
-  throw InputError(source_ + ": line " + std::to_string(line_) + ": expected " + expected +
-                   ", got " + (got.empty() ? "end of file" : "\"" + shown + "\""));
+  const std::string where = binary_ ? "byte " + std::to_string(pos_) : "line " + std::to_string(line_);
+  throw InputError(source_ + ": " + where + ": expected " + expected + ", got " +
+                   (got.empty() ? "end of file" : "\"" + shown + "\""));
 }
 
 std::string TextTokens::next(const std::string& expected) {
@@ -78,6 +80,17 @@ void TextTokens::expect(const std::string& token) {
 }
 
 void TextTokens::skip_line() { rest_of_line(); }
+
+void TextTokens::begin_binary() {
+  rest_of_line();
+  binary_ = true;
+}
+
+void TextTokens::read_bytes(void* out, std::size_t n, const std::string& expected) {
+  if (n > bytes_left()) fail(expected, "");
+  std::memcpy(out, text_.data() + pos_, n);
+  pos_ += n;
+}
 
 std::string TextTokens::rest_of_line() {
   const std::size_t start = pos_;

@@ -1,6 +1,8 @@
 #pragma once
 // Whitespace-separated tokens with line numbers, for the ASCII mesh readers: every complaint
-// names the file, the line and what was expected.
+// names the file, the line and what was expected. Files that mix text with binary blocks (Gmsh's
+// binary .msh) read those blocks with begin_binary / read_bytes; from the first binary block on,
+// complaints name the byte offset instead of the line.
 #include <cstdint>
 #include <string>
 
@@ -21,6 +23,13 @@ class TextTokens {
   void skip_line();          // skips the rest of the current line
   std::string rest_of_line();
   int line() const { return line_; }
+  // Raw bytes follow the current line: skips the rest of it, newline included.
+  void begin_binary();
+  // The next n raw bytes; InputError when fewer are left.
+  void read_bytes(void* out, std::size_t n, const std::string& expected);
+  std::size_t bytes_left() const { return text_.size() - pos_; }
+  // Whether every byte has been read (unlike at_end, skips nothing: an empty line still counts).
+  bool exhausted() const { return pos_ >= text_.size(); }
   [[noreturn]] void fail(const std::string& expected, const std::string& got) const;
 
  private:
@@ -29,6 +38,7 @@ class TextTokens {
   std::string source_;
   std::size_t pos_ = 0;
   int line_ = 1;
+  bool binary_ = false;
 };
 
 }  // namespace softsim::mesh

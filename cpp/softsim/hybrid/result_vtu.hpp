@@ -1,0 +1,62 @@
+#pragma once
+// The ParaView output of a dhd_sim run (output.vtu, output.vtu_interval, output.vtu_format;
+// cpp/apps/dhd_sim.md): the final state as one VTU file, the explicit run's snapshots as
+// <stem>_<step>.vtu files and the <stem>.pvd series that lists them with their times.
+//
+// Point data: displacement (m), velocity (m/s; zero for the static solver).
+// Cell data: element_kind (0 linear, 1 TLED, 2 corotational, 3 ANP), region (the mesh's tag, or
+// 0), green_lagrange_strain (E = ½(FᵀF − I), dimensionless), cauchy_stress (Pa, each element's
+// own law, fem/element_stress.hpp), both symmetric tensors of 6 components (xx yy zz xy yz xz),
+// and von_mises_stress (Pa). Positions are the reference nodes.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "softsim/dynamics/explicit_solver.hpp"
+#include "softsim/fem/element_stress.hpp"
+#include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/hybrid/dhd_run.hpp"
+#include "softsim/io/vtu_writer.hpp"
+
+namespace softsim::hybrid {
+
+// One state's VTU files. The field buffers and the stress evaluator are sized once, so the
+// snapshots of a run reuse them.
+class ResultVtu {
+ public:
+  ResultVtu(const mesh::TetMesh& mesh, const std::vector<fem::ElementKind>& kinds, const fem::Material& material,
+            io::VtuFormat format);
+  // u, v: 3 values per node; v may be empty (written as zero). Atomic.
+  void write(const std::string& path, const std::vector<double>& u, const std::vector<double>& v);
+
+ private:
+  const mesh::TetMesh& mesh_;
+  io::VtuFormat format_;
+  fem::ElementStress stress_;
+  io::VtuFields fields_;
+};
+
+// "<stem>_<step>.vtu" (six digits, e.g. _000100) and "<stem>.pvd", the stem being `vtu` less a
+// ".vtu" ending.
+std::string snapshot_path(const std::string& vtu, int step);
+std::string series_path(const std::string& vtu);
+
+// What dhd_sim writes besides its artifact: nothing without output.vtu; otherwise the final
+// state, and with output.vtu_interval the snapshots, each followed by the .pvd rewritten
+// (atomically) to list every snapshot written so far, so that the series on disk is always whole.
+class VtuOutput {
+ public:
+  VtuOutput(const mesh::TetMesh& mesh, const std::vector<fem::ElementKind>& kinds, const DhdConfig& config);
+  // For run_dhd: empty unless snapshots are asked for. Refers to this object.
+  dynamics::SnapshotFn snapshot();
+  void write_final(const DhdRun& run);
+
+ private:
+  void write_snapshot(int step, double time, const std::vector<double>& u, const std::vector<double>& v);
+
+  OutputConfig output_;
+  std::optional<ResultVtu> writer_;
+  std::vector<io::PvdEntry> series_;
+};
+
+}  // namespace softsim::hybrid
