@@ -85,8 +85,9 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
   if (run.static_result) {
     const auto& s = *run.static_result;
     p["solver"] = {{"kind", "static"},
-                   {"method", "newton"},
-                   {"increments", c.static_options.increments},
+                   // A linear model is solved once (K u = R), without increments or inversion check.
+                   {"method", s.linear_solve ? "linear" : "newton"},
+                   {"increments", s.linear_solve ? 1 : c.static_options.increments},
                    {"iterations", s.iterations},
                    {"residual", s.residual},
                    {"force_scale", s.force_scale},
