@@ -26,6 +26,7 @@ struct DhdRun {
   std::optional<dynamics::ExplicitResult> explicit_result;
   std::optional<dynamics::StaticResult> static_result;
   double setup_seconds = 0;  // critical step, element set and solver set-up (the partition excluded)
+  double solve_seconds = 0;  // static runs: wall time of solve_static (0 for explicit runs)
 };
 
 // Throws InputError (bad step request, ...) or NumericalError (failure during the solve).
