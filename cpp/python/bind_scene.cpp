@@ -10,6 +10,7 @@
 
 #include "bindings.hpp"
 #include "config_source.hpp"
+#include "py_arrays.hpp"
 #include "py_mesh.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
 #include "softsim/io/mesh_artifact.hpp"
@@ -19,10 +20,6 @@ namespace py = pybind11;
 namespace softsim::python {
 
 namespace {
-
-// Stands for the config's "mesh" when a Mesh object is passed instead (read_dhd_config reads
-// the key; nothing loads it).
-constexpr const char* kMeshObject = "<softsim.Mesh>";
 
 std::unique_ptr<hybrid::DhdScene> make_scene(const py::object& config_value, const std::shared_ptr<PyMesh>& given) {
   Config config = Config::from_python(config_value);
@@ -37,12 +34,6 @@ std::unique_ptr<hybrid::DhdScene> make_scene(const py::object& config_value, con
     hybrid::DhdConfig c = hybrid::read_dhd_config(cfg, *mesh);
     return std::make_unique<hybrid::DhdScene>(mesh, std::move(c));
   });
-}
-
-py::array_t<double> rows3_copy(const double* data, py::ssize_t rows) {
-  py::array_t<double> a({rows, py::ssize_t{3}});
-  if (rows > 0) std::memcpy(a.mutable_data(), data, static_cast<std::size_t>(rows) * 3 * sizeof(double));
-  return a;
 }
 
 int constraint_of(const hybrid::DhdScene& s, const py::object& which) {
@@ -116,7 +107,7 @@ inverted element: exit 3; the scene must then be reset()).
           [](py::object self, bool copy) -> py::array {
             const DhdScene& s = self.cast<const DhdScene&>();
             const py::ssize_t n = s.num_nodes();
-            if (copy) return rows3_copy(s.displacement(), n);
+            if (copy) return rows3(s.displacement(), n);
             // In place: the engine's current buffer, read-only, valid until the next step() or
             // reset() (the engine rotates three buffers; the view then shows an older state).
             py::array a(py::dtype::of<double>(), {n, py::ssize_t{3}}, s.displacement(), self);
@@ -144,7 +135,7 @@ buffer without copying: valid only until the next step() or reset().)doc")
             }
             py::dict d;
             for (std::size_t c = 0; c < r.size(); ++c)
-              d[py::str(s.config().scene.constraints[c].name)] = rows3_copy(r[c].data(), 1).attr("reshape")(3);
+              d[py::str(s.config().scene.constraints[c].name)] = rows3(r[c].data(), 1).attr("reshape")(3);
             return d;
           },
           "Reaction of each constraint by name (N): F_int - R summed over its dofs, inertia left out.")

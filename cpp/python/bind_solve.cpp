@@ -10,6 +10,7 @@
 #include "bindings.hpp"
 #include "config_source.hpp"
 #include "json_convert.hpp"
+#include "py_arrays.hpp"
 #include "py_mesh.hpp"
 #include "softsim/hybrid/dhd_vtu.hpp"
 #include "softsim/io/artifact.hpp"
@@ -20,10 +21,6 @@ namespace py = pybind11;
 namespace softsim::python {
 
 namespace {
-
-// Stands for the config's "mesh" when a Mesh object is passed instead (read_dhd_config reads
-// the key; nothing loads it).
-constexpr const char* kMeshObject = "<softsim.Mesh>";
 
 struct Outcome {
   hybrid::DhdRun run;
@@ -58,12 +55,6 @@ void default_to_static(nlohmann::json& config) {
     config["solver"] = {{"kind", "static"}};
   else if (solver->is_object() && !solver->contains("kind"))
     (*solver)["kind"] = "static";
-}
-
-py::array_t<double> rows3(const double* data, std::size_t rows) {
-  py::array_t<double> a({static_cast<py::ssize_t>(rows), py::ssize_t{3}});
-  if (rows > 0) std::memcpy(a.mutable_data(), data, rows * 3 * sizeof(double));
-  return a;
 }
 
 struct StaticSolution {

@@ -17,6 +17,9 @@
 namespace softsim::python {
 
 inline constexpr const char* kDictSource = "<dict>";
+// Stands for the config's "mesh" when a softsim.Mesh is passed instead (read_dhd_config reads the
+// key; nothing loads it).
+inline constexpr const char* kMeshObject = "<softsim.Mesh>";
 
 class Config {
  public:
