@@ -11,11 +11,14 @@ from pipeline.paths import ROOT
 
 
 def git_commit() -> str:
+    """The source tree's commit as the executables report it (cpp/softsim/io/git_commit.hpp):
+    `git describe --always --dirty` of the repository root, "unknown" without git or a repository."""
     try:
-        return subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
-                              text=True, check=True).stdout.strip()
+        out = subprocess.run(["git", "-C", str(ROOT), "describe", "--always", "--dirty"],
+                             capture_output=True, text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
+    return out or "unknown"
 
 
 def _check_finite(value, where=""):

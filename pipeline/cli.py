@@ -14,9 +14,25 @@ from pipeline.errors import ExperimentError
 from pipeline.paths import CACHE, RESULTS
 
 
-def _progress_echo():
-    """Plain lines, one per finished run (a log that reads well in CI and on a terminal)."""
-    return lambda line: print(line, flush=True)
+def _progress_echo(bar):
+    """Plain lines on stdout, one per finished run (a log that reads well in CI and on a
+    terminal); with a progress bar on the terminal, written above it instead of through it."""
+    if bar.disable:
+        return lambda line: print(line, flush=True)
+
+    def echo(line):
+        bar.write(line, file=sys.stdout)
+        sys.stdout.flush()
+    return echo
+
+
+def progress_bar(total: int, stream=None):
+    """The overall count of runs done out of `total`, with an ETA, on `stream` (stderr) when it
+    is a terminal; disabled, it writes nothing (CI logs and pipes keep only the plain lines)."""
+    from tqdm import tqdm
+    stream = stream if stream is not None else sys.stderr
+    return tqdm(total=total, desc="pipeline", unit="run", file=stream, disable=not stream.isatty(),
+                dynamic_ncols=True)
 
 
 def cmd_run(args) -> int:
@@ -26,12 +42,14 @@ def cmd_run(args) -> int:
     if args.stage and args.experiment == "all":
         raise ExperimentError("command line: --stage needs one experiment, not all")
     experiments = [experiment_mod.load(n) for n in names]
-    runner = Runner(jobs=args.jobs, force=args.force,
-                    force_stages=[args.stage] if args.stage else [], echo=_progress_echo())
+    selected = [(exp, experiment_mod.closure(exp, args.stage) if args.stage else list(exp.runs))
+                for exp in experiments]
     ok = True
-    for exp in experiments:
-        run_ids = experiment_mod.closure(exp, args.stage) if args.stage else list(exp.runs)
-        ok = runner.run_experiment(exp, run_ids) and ok
+    with progress_bar(sum(len(run_ids) for _, run_ids in selected)) as bar:
+        runner = Runner(jobs=args.jobs, force=args.force, force_stages=[args.stage] if args.stage else [],
+                        echo=_progress_echo(bar), progress=bar)
+        for exp, run_ids in selected:
+            ok = runner.run_experiment(exp, run_ids) and ok
     write_manifest(runner, experiments, complete=args.experiment == "all" and not args.stage)
     report_md.assemble()
     counts = {}

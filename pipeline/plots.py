@@ -15,3 +15,12 @@ def save(fig, path) -> None:
     fig.tight_layout()
     fig.savefig(path, metadata={"Software": None})
     plt.close(fig)
+
+
+def plain_log_ticks(axis, subs=(1.0, 2.0, 5.0)) -> None:
+    """Label a log axis with plain numbers at 1, 2 and 5 times each power of ten (0.2, 0.5, 1).
+    Over a decade or less matplotlib labels its minor ticks as 2×10⁻¹, unreadable at tick size."""
+    from matplotlib import ticker
+    axis.set_major_locator(ticker.LogLocator(base=10.0, subs=subs))
+    axis.set_major_formatter(ticker.FormatStrFormatter("%g"))
+    axis.set_minor_formatter(ticker.NullFormatter())

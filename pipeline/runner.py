@@ -68,11 +68,13 @@ class Outcome:
 
 
 class Runner:
-    def __init__(self, jobs: int = 1, force: bool = False, force_stages=(), echo=print):
+    def __init__(self, jobs: int = 1, force: bool = False, force_stages=(), echo=print, progress=None):
         self.jobs = max(1, jobs)
         self.force = force
         self.force_stages = set(force_stages)
         self.echo = echo
+        # Anything with update(n) (a tqdm bar): told of every finished run, whatever its outcome.
+        self.progress = progress
         self.outcomes: Dict[tuple, Outcome] = {}
         self.lock = threading.Lock()
         for d in (ARTIFACTS, CONFIGS, LOGS, STAMPS):
@@ -222,7 +224,7 @@ class Runner:
                         done_count += 1
                         self.outcomes[(exp.name, rid)] = Outcome(exp.runs[rid], "skipped", "", None, 0,
                                                                  "a dependency failed")
-                        self.echo(f"[{exp.name} {done_count}/{total}] skipped {rid}: a dependency failed")
+                        self._finished(f"[{exp.name} {done_count}/{total}] skipped {rid}: a dependency failed")
                 ready = [rid for rid in pending
                          if all((exp.name, d) in self.outcomes for d in exp.runs[rid].deps)]
                 for rid in ready:
@@ -250,13 +252,19 @@ class Runner:
                     done_count += 1
                     if outcome.status == "failed":
                         ok = False
-                        self.echo(f"[{exp.name} {done_count}/{total}] FAILED {rid}: {outcome.message}")
+                        self._finished(f"[{exp.name} {done_count}/{total}] FAILED {rid}: {outcome.message}")
                     elif outcome.status == "cached":
-                        self.echo(f"[{exp.name} {done_count}/{total}] cached {rid} (key {outcome.key[:12]})")
+                        self._finished(f"[{exp.name} {done_count}/{total}] cached {rid} (key {outcome.key[:12]})")
                     else:
-                        self.echo(f"[{exp.name} {done_count}/{total}] ran {rid} "
-                                  f"({exp.runs[rid].target}, {outcome.seconds:.1f} s)")
+                        self._finished(f"[{exp.name} {done_count}/{total}] ran {rid} "
+                                       f"({exp.runs[rid].target}, {outcome.seconds:.1f} s)")
         return ok
+
+    def _finished(self, line: str) -> None:
+        """One run is done: its log line, and one step of the progress."""
+        self.echo(line)
+        if self.progress is not None:
+            self.progress.update(1)
 
     def _guarded(self, exp, run) -> Outcome:
         try:

@@ -5,9 +5,10 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake git
   libeigen3-dev nlohmann-json3-dev libceres-dev libgsl-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev
   gmsh libgmsh-dev calculix-ccx
   python3 python3-matplotlib python3-numpy python3-scipy python3-pytest python3-tqdm python3-meshio
+  python3-dev pybind11-dev python3-pybind11
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

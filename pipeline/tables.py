@@ -3,8 +3,16 @@ import csv
 import math
 
 
+# Magnitudes written as plain numbers; outside them exponent notation reads better (condition
+# numbers, residuals at round-off).
+PLAIN_RANGE = (1e-3, 1e6)
+
+
 def fmt(value, digits=4):
-    """Compact, honest formatting: significant digits, no false precision."""
+    """Compact, honest formatting: `digits` significant digits, no false precision. Numbers in
+    PLAIN_RANGE are written plainly: from 10**(digits - 1) on with their whole integer part
+    (12345.6 -> 12346; `g` would switch to exponent notation at 10**digits, and rounding the
+    integer part to zeros, 12350, would hide digits that were measured)."""
     if value is None:
         return "–"
     if isinstance(value, bool):
@@ -16,9 +24,12 @@ def fmt(value, digits=4):
             return str(value)
         if value == 0:
             return "0"
-        if 1e-3 <= abs(value) < 1e5:
-            return f"{value:.{digits}g}"
-        return f"{value:.{max(1, digits - 1)}e}"
+        magnitude = abs(value)
+        if not PLAIN_RANGE[0] <= magnitude < PLAIN_RANGE[1]:
+            return f"{value:.{max(1, digits - 1)}e}"
+        if magnitude >= 10 ** (digits - 1):
+            return f"{value:.0f}"
+        return f"{value:.{digits}g}"
     return str(value)
 
 

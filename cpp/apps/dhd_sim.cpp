@@ -7,8 +7,8 @@
 #include <iostream>
 
 #include "common/app.hpp"
-#include "softsim/hybrid/dhd_run.hpp"
-#include "softsim/hybrid/result_vtu.hpp"
+#include "common/progress_line.hpp"
+#include "softsim/hybrid/dhd_vtu.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 
 using namespace softsim;
@@ -52,10 +52,12 @@ int main(int argc, char** argv) {
       return;
     }
 
-    const std::vector<fem::ElementKind> kinds = hybrid::make_partition(mesh, config.partition);
-    hybrid::VtuOutput vtu(mesh, kinds, config);
-    const hybrid::DhdRun run = hybrid::run_dhd(mesh, config, kinds, vtu.snapshot());
-    vtu.write_final(run);
+    // Steps, simulated time and steps/s on a terminal; quiet otherwise.
+    app::ProgressLine progress_line("dhd_sim", config.explicit_solver.steps);
+    dynamics::ProgressFn progress;
+    if (progress_line.enabled() && !config.static_solver)
+      progress = [&](int steps_done, double time) { progress_line.update(steps_done, time); };
+    const hybrid::DhdRun run = hybrid::run_dhd_writing_vtu(mesh, config, progress);
     ctx.write(hybrid::kResultSchema, hybrid::kResultSchemaVersion, hybrid::result_payload(mesh, config, run));
     if (run.explicit_result)
       std::cerr << "dhd_sim: " << run.explicit_result->steps << " explicit steps of " << run.step.dt << " s (critical "

@@ -10,24 +10,14 @@
 #include "softsim/fit/dataset_json.hpp"
 #include "softsim/fit/fit_driver.hpp"
 #include "softsim/fit/model_json.hpp"
-#include "softsim/fit/playback.hpp"
 #include "softsim/fit/report_json.hpp"
 #include "softsim/fit/settings_json.hpp"
 #include "softsim/fit/static_series.hpp"
+#include "softsim/fit/surface_playback.hpp"
 
 using namespace softsim;
 
 namespace {
-
-Eigen::Vector3d read_force(const io::JsonReader& node) {
-  if (!node.raw().is_array() || node.raw().size() != 3) node.fail("a force [fx, fy, fz] in N");
-  return Eigen::Vector3d(node[0].as_double(), node[1].as_double(), node[2].as_double());
-}
-
-void require_same_nodes(const fit::Dataset& ds, const fit::FitModel& model) {
-  if (!fit::same_surface(model.nodes, ds.nodes) || ds.loaded_node != model.loaded_node)
-    throw InputError(ds.source + ": /payload/top_nodes: expected the surface nodes and loaded node of the fitted datasets");
-}
 
 void fit_or_cv(app::AppContext& ctx) {
   const io::JsonReader& cfg = ctx.config();
@@ -107,7 +97,7 @@ void fit_or_cv(app::AppContext& ctx) {
   nlohmann::json validated = nlohmann::json::array();
   for (const auto& path : validation) {
     const fit::Dataset v = fit::read_dataset(ctx.input(path));
-    require_same_nodes(v, result.model);
+    fit::require_same_nodes(v, result.model);
     validated.push_back(fit::assess_dataset(result.model, v, examples));
     if (!exact && v.unit_solutions) exact.emplace(*v.unit_solutions);
   }
@@ -124,48 +114,11 @@ void fit_or_cv(app::AppContext& ctx) {
 }
 
 void play(app::AppContext& ctx) {
-  const io::JsonReader& cfg = ctx.config();
-  const std::string fit_path = cfg.get_string("fit");
-  const io::JsonReader forces_node = cfg.at("forces");
-  std::vector<Eigen::Vector3d> forces;
-  for (std::size_t i = 0; i < forces_node.size(); ++i) forces.push_back(read_force(forces_node[i]));
-  if (forces.empty()) forces_node.fail("at least one force");
-  const std::string reference_path = cfg.get_string("reference", "");
-  cfg.reject_unknown();
-
-  const fit::FitModel model = fit::read_fit_model(ctx.input(fit_path));
-  std::optional<fit::Superposition> exact;
-  if (!reference_path.empty()) {
-    const fit::Dataset ref = fit::read_dataset(ctx.input(reference_path));
-    require_same_nodes(ref, model);
-    if (!ref.unit_solutions) throw InputError(reference_path + ": /payload/unit_solutions: expected unit solutions for the reference");
-    exact.emplace(*ref.unit_solutions);
-  }
-  const fit::SurfacePlayer player(model);
-  const int n = player.node_count();
-  Eigen::VectorXd u(3 * n), s(3 * n);
-  nlohmann::json cases = nlohmann::json::array();
-  for (const Eigen::Vector3d& f : forces) {
-    player.play(f, u.data());
-    Eigen::MatrixXd rows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(u.data(), n, 3);
-    const Eigen::Vector3d delta = player.loaded_displacement(f);
-    nlohmann::json c = {{"force", {f[0], f[1], f[2]}},
-                        {"top_displacement", fit::rows_to_json(rows)},
-                        {"loaded_node_displacement", {rows(model.loaded_node, 0), rows(model.loaded_node, 1), rows(model.loaded_node, 2)}},
-                        {"relation1_displacement", {delta[0], delta[1], delta[2]}}};
-    if (exact) {
-      exact->apply(f, s.data());
-      const Eigen::MatrixXd ref = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(s.data(), n, 3);
-      fit::ErrorAccumulator e(n);
-      e.add(u.data(), ref);
-      c["reference_loaded_node_displacement"] = {ref(model.loaded_node, 0), ref(model.loaded_node, 1), ref(model.loaded_node, 2)};
-      c["error_vs_reference"] = fit::errors_to_json(e.result());
-    }
-    cases.push_back(c);
-  }
-  ctx.write("surface_playback", 1,
-            {{"fit", fit_path}, {"loaded_node", model.loaded_node + 1}, {"top_nodes", fit::rows_to_json(model.nodes)}, {"cases", cases}});
-  std::cerr << "marquardt_fit play: " << forces.size() << " forces\n";
+  const fit::PlaybackConfig config = fit::read_playback_config(ctx.config());
+  ctx.input(config.fit_path);
+  if (!config.reference_path.empty()) ctx.input(config.reference_path);
+  ctx.write(fit::kPlaybackSchema, fit::kPlaybackSchemaVersion, fit::play_back(config));
+  std::cerr << "marquardt_fit play: " << config.forces.size() << " forces\n";
 }
 
 }  // namespace

@@ -2,151 +2,18 @@
 //   dataset      (default) solve a force set at node 61, write "rpim_dataset"
 //   stability    vary q, alpha_c, d_c or the support around the base setting, write "rpim_stability"
 //   convergence  refine a block with a manufactured solution, write "rpim_convergence"
-#include <cmath>
 #include <iostream>
 
 #include "common/app.hpp"
-#include "softsim/meshless/lee_radok.hpp"
-#include "softsim/meshless/result_json.hpp"
-#include "softsim/meshless/rpim_config.hpp"
+#include "softsim/meshless/rpim_modes.hpp"
 
 using namespace softsim;
-using namespace softsim::meshless;
-
-namespace {
-
-RpimSettings read_settings(const io::JsonReader& cfg) {
-  return read_rpim_settings(cfg.optional("rpim"), cfg.optional("penalty"), cfg.optional("solver"));
-}
-
-void run_dataset(app::AppContext& ctx) {
-  const io::JsonReader& cfg = ctx.config();
-  const PlateScene scene = read_plate_scene(cfg.optional("plate"));
-  const RpimSettings settings = read_settings(cfg);
-  const DatasetSpec spec = read_dataset_spec(cfg.at("dataset"));
-  bool all_nodes = false, stiffness_conditioning = true;
-  if (const auto out = cfg.optional("output")) {
-    all_nodes = out->get_bool("all_nodes", false);
-    stiffness_conditioning = out->get_bool("stiffness_conditioning", true);
-    out->reject_unknown();
-  }
-  std::optional<IndentationInputs> indentation;
-  if (const auto ind = cfg.optional("indentation")) indentation = read_indentation(*ind);
-  cfg.reject_unknown();
-  if (spec.kind == DatasetKind::random) ctx.provenance.seed = spec.seed;
-
-  const PlateRun run = run_plate(scene, settings, dataset_forces(spec), stiffness_conditioning);
-  nlohmann::json payload = dataset_payload(scene, settings, spec, run, all_nodes);
-  if (indentation) {
-    const IndentationModulus m = lee_radok_modulus(indentation->force, indentation->depth,
-                                                   indentation->probe_radius, indentation->poisson_ratio);
-    payload["indentation"] = {{"force", indentation->force},
-                              {"depth", indentation->depth},
-                              {"probe_radius", indentation->probe_radius},
-                              {"poisson_ratio", indentation->poisson_ratio},
-                              {"shear_modulus", m.shear_modulus},
-                              {"youngs_modulus", m.youngs_modulus},
-                              {"scene_youngs_modulus", scene.youngs_modulus},
-                              {"ratio_to_scene", m.youngs_modulus / scene.youngs_modulus}};
-  }
-  ctx.write("rpim_dataset", 1, std::move(payload));
-  const int l = run.loaded_node_index;
-  std::cerr << "rpim_precompute: " << run.nodes.size() << " nodes, " << run.forces.size() << " cases; node "
-            << run.loaded_node_number << " compliance (" << run.unit_solutions(3 * l, 0) << ", "
-            << run.unit_solutions(3 * l + 1, 1) << ", " << run.unit_solutions(3 * l + 2, 2) << ") m/N; "
-            << run.timings.total_s << " s\n";
-}
-
-void run_stability(app::AppContext& ctx) {
-  const io::JsonReader& cfg = ctx.config();
-  const PlateScene scene = read_plate_scene(cfg.optional("plate"));
-  const RpimSettings settings = read_settings(cfg);
-  const io::JsonReader sweep = cfg.at("stability");
-  cfg.reject_unknown();
-  std::vector<std::pair<StabilityParameter, double>> runs;
-  for (const StabilityParameter parameter : kStabilityParameters) {
-    const std::string key = stability_parameter_name(parameter);
-    if (!sweep.has(key)) continue;
-    for (double v : sweep.get_doubles(key)) {
-      sweep.require(v > 0, key, "positive parameter values");
-      if (parameter == StabilityParameter::nearest_count)
-        sweep.require(v >= 1 && v <= 1000 && v == std::floor(v), key, "whole node counts between 1 and 1000");
-      runs.emplace_back(parameter, v);
-    }
-  }
-  sweep.reject_unknown();
-  if (runs.empty()) sweep.fail("at least one parameter list (q, alpha_c, d_c_spacing_factor, ...)");
-
-  nlohmann::json points = nlohmann::json::array();
-  int failures = 0;
-  for (const auto& [parameter, value] : runs) {
-    const StabilityPoint p = stability_point(scene, settings, parameter, value);
-    failures += p.ok ? 0 : 1;
-    points.push_back(stability_point_json(p, settings.max_moment_condition));
-  }
-  const double h = plate_mean_spacing(scene);
-  nlohmann::json payload = {
-      {"plate", plate_scene_json(scene)},
-      {"base", rpim_settings_json(settings, resolve_rbf(settings, h), resolve_support(settings, h), h)},
-      {"loaded_node", plate_loaded_node_number(scene)},
-      {"points", points}};
-  ctx.write("rpim_stability", 1, std::move(payload));
-  std::cerr << "rpim_precompute stability: " << runs.size() << " settings, " << failures
-            << " numerical failures (recorded)\n";
-}
-
-void run_convergence(app::AppContext& ctx) {
-  const io::JsonReader& cfg = ctx.config();
-  const BlockStudy block = read_block_study(cfg.optional("block"));
-  const RpimSettings settings = read_settings(cfg);
-  std::vector<int> counts;
-  for (const auto n : cfg.get_ints("nodes_per_edge")) {
-    cfg.require(n >= 3 && n <= 41, "nodes_per_edge", "node counts per edge between 3 and 41");
-    counts.push_back(static_cast<int>(n));
-  }
-  cfg.require(!counts.empty(), "nodes_per_edge", "a non-empty list of node counts per edge");
-  cfg.reject_unknown();
-
-  const std::vector<ConvergencePoint> study = convergence_study(block, settings, counts);
-  nlohmann::json rows = nlohmann::json::array();
-  std::vector<double> h, rms, max;
-  for (const auto& p : study) {
-    rows.push_back({{"nodes_per_edge", p.nodes_per_edge},
-                    {"nodes", p.result.nodes},
-                    {"spacing", p.result.spacing},
-                    {"rms_error", p.result.rms_error},
-                    {"max_error", p.result.max_error},
-                    {"reference", p.result.reference},
-                    {"relative_rms_error", p.result.relative_rms()},
-                    {"relative_max_error", p.result.relative_max()}});
-    h.push_back(p.result.spacing);
-    rms.push_back(p.result.rms_error);
-    max.push_back(p.result.max_error);
-  }
-  const double edge_h = block.edge / (counts.front() - 1);
-  nlohmann::json payload = {
-      {"block",
-       {{"field", block.field == ManufacturedField::plane_wave ? "plane_wave" : "linear_patch"},
-        {"edge", block.edge},
-        {"youngs_modulus", block.youngs_modulus},
-        {"poisson_ratio", block.poisson_ratio},
-        {"gauss_order", block.gauss_order},
-        {"boundary", "every boundary node held at the exact displacement by penalty"}}},
-      {"model", rpim_settings_json(settings, resolve_rbf(settings, edge_h), resolve_support(settings, edge_h), edge_h)},
-      {"rows", rows},
-      {"observed_rate", {{"rms", observed_rate(h, rms)}, {"max", observed_rate(h, max)}}}};
-  payload["model"]["note"] = "spacing-relative lengths resolved with the first refinement's spacing";
-  ctx.write("rpim_convergence", 1, std::move(payload));
-  std::cerr << "rpim_precompute convergence: observed rate (rms) " << observed_rate(h, rms) << "\n";
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   app::AppInfo info;
   info.name = "rpim_precompute";
   info.summary = "RPIM meshless plate model of 002: force datasets, stability sweep, convergence study";
-  info.modes = {"dataset", "stability", "convergence"};
+  info.modes = meshless::kRpimModes;
   info.config_help =
       "  {\"plate\": {\"size\", \"nodes\", \"youngs_modulus\", \"poisson_ratio\", \"supports\",\n"
       "             \"background_cells\", \"gauss_order\", \"body_force\"},\n"
@@ -159,8 +26,9 @@ int main(int argc, char** argv) {
       "   convergence: \"block\": {...}, \"nodes_per_edge\": [...]}\n"
       "  Full reference: cpp/apps/rpim_precompute.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
-    if (ctx.mode == "stability") run_stability(ctx);
-    else if (ctx.mode == "convergence") run_convergence(ctx);
-    else run_dataset(ctx);
+    const meshless::RpimOutput out = meshless::run_rpim_mode(ctx.mode, ctx.config());
+    ctx.provenance.seed = out.seed;
+    ctx.write(out.schema, meshless::kRpimSchemaVersion, out.payload);
+    std::cerr << "rpim_precompute" << (ctx.mode == "dataset" ? "" : " " + ctx.mode) << ": " << out.summary << "\n";
   });
 }

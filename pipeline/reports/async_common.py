@@ -70,11 +70,14 @@ def force_plot(path, run, title, window=None):
     spans = [(t[0], t[-1])] + ([window] if window else [])
     for ax, (t0, t1) in zip(axes[:, 0], spans):
         sel = (t >= t0) & (t <= t1)
-        if "force_exact" in s:
-            ax.plot(t[sel], 1e3 * s["force_exact"][sel], color="0.6", lw=2.2, label="exact")
-        ax.plot(t[sel], 1e3 * s["force_whole"][sel], color="tab:blue", lw=1.0, label="whole model")
+        ax.plot(t[sel], 1e3 * s["force_whole"][sel], color="tab:blue", lw=2.2, label="whole model")
         if "force_async" in s:
             ax.plot(t[sel], 1e3 * s["force_async"][sel], color="tab:red", lw=1.0, label="asynchronous")
+        if "force_exact" in s:
+            # Dashed and on top: the exact force lies on the whole model's almost everywhere and
+            # would vanish beneath it.
+            ax.plot(t[sel], 1e3 * s["force_exact"][sel], color="k", lw=0.9, ls=(0, (4, 3)), zorder=3,
+                    label="exact (dashed, on top)")
         ax.set_ylabel("force (mN)")
         ax.grid(True, alpha=0.3)
     axes[-1, 0].set_xlabel("time (s)")

@@ -101,6 +101,8 @@ def tradeoff(ctx, rows, thresholds):
         ax.axhline(100 * t, color=col, lw=0.8, ls="--")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    plots.plain_log_ticks(ax.xaxis)
+    plots.plain_log_ticks(ax.yaxis)
     ax.set_xlabel("time per frame, asynchronous regions (µs); dotted: whole model")
     ax.set_ylabel("RMS force error vs whole model (%)")
     ax.set_title("Run time against force error, every (n, f); green ≤ "

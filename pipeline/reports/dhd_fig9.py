@@ -68,20 +68,22 @@ def report(ctx):
     dmax = max(np.linalg.norm(common.displacement(x["run"]) - u_ref, axis=1).max() for x in cases) * 1e3 or 1.0
 
     n = len(cases)
-    fig = plots.plt.figure(figsize=(3.2 * n + 1.0, 9.6), dpi=110)
-    grid = fig.add_gridspec(3, n, left=0.02, right=0.88, top=0.92, bottom=0.03, wspace=0.05, hspace=0.12)
+    # mplot3d draws the z label of the top row's view, and the x label, outside the panel: the
+    # spacing leaves room for them, and transparent panels never paint over a neighbour's labels.
+    fig = plots.plt.figure(figsize=(3.6 * n + 1.0, 10.4), dpi=110)
+    grid = fig.add_gridspec(3, n, left=0.03, right=0.88, top=0.92, bottom=0.03, wspace=0.18, hspace=0.2)
     table = []
     for i, x in enumerate(cases):
         u = common.displacement(x["run"])
         kinds = common.element_kinds(x["run"].payload)
         diff = np.linalg.norm(u - u_ref, axis=1)
-        ax = fig.add_subplot(grid[0, i], projection="3d")
+        ax = fig.add_subplot(grid[0, i], projection="3d", facecolor="none")
         m1 = common.draw_deformed(ax, nodes, tets, tri_full, u, kinds, vmax=vmax, view=(24, -62))
         ax.set_title(_case_label(x), fontsize=7)
-        ax = fig.add_subplot(grid[1, i], projection="3d")
+        ax = fig.add_subplot(grid[1, i], projection="3d", facecolor="none")
         common.draw_deformed(ax, nodes, tets, tri_half, u, kinds, vmax=vmax, view=(12, 72))
         ax.set_title("cut open at the centre plane", fontsize=7)
-        ax = fig.add_subplot(grid[2, i], projection="3d")
+        ax = fig.add_subplot(grid[2, i], projection="3d", facecolor="none")
         m2 = common.draw_difference(ax, nodes, tets, tri_half, u, kinds, diff * 1e3, dmax)
         ax.set_title("|u − u_TLED|, cut open", fontsize=7)
         e = common.displacement_error(u, u_ref, applied=applied)

@@ -16,6 +16,7 @@
 #include "softsim/dynamics/static_solver.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/hybrid/dhd_run.hpp"
+#include "softsim/hybrid/dhd_scene.hpp"
 #include "softsim/hybrid/partition.hpp"
 #include "softsim/io/artifact.hpp"
 #include "softsim/io/atomic_file.hpp"
@@ -355,6 +356,9 @@ TEST(App, ExitCodesAndArtifact) {
   ASSERT_EQ(run_dhd_sim(s.path("static.json"), s.path("static_out.json")), 0);
   const io::Artifact st = io::Artifact::read(s.path("static_out.json"), "dhd_result", 1);
   EXPECT_EQ(st.payload().at("solver").at("kind").as_string(), "static");
+  // The static solve is timed like the explicit loop (issue 25): a Newton solve takes time.
+  EXPECT_GT(st.payload().at("timing").get_double("solve_seconds"), 0.0);
+  EXPECT_GE(st.payload().at("timing").get_double("setup_seconds"), 0.0);
 }
 
 TEST(Bench, MeasuresEveryPartitionAndThreadCount) {
@@ -375,4 +379,60 @@ TEST(Bench, MeasuresEveryPartitionAndThreadCount) {
   EXPECT_EQ(runs.back().threads, 2);
   EXPECT_GT(runs.back().ns_per_element[0], 0.0);
   EXPECT_GT(runs.back().ns_per_element[1], 0.0);
+}
+
+// ---- the scene object: the same config, stepped by the caller ----
+
+TEST(Scene, SteppedFromTheConfigEqualsTheExecutablesRun) {
+  const auto m = std::make_shared<const mesh::TetMesh>(cuboid(3, 3, 3, 0.03, 0.03, 0.03));
+  const nlohmann::json j = {
+      {"mesh", "m"},
+      {"partition", {{"linear_fraction", 0.4}}},
+      {"damping", {{"alpha", 4.0}}},
+      {"boundary",
+       {{"fixed", {"bottom"}},
+        {"prescribed", {{{"set", "top"}, {"displacement", {0, 0.0005, -0.002}}, {"ramp_time", 0.03}}}}}},
+      {"solver", {{"steps", 90}, {"energy_interval", 10}}}};
+  const hybrid::DhdConfig config = parse(j, *m);
+  const auto whole = hybrid::run_dhd(*m, config);
+  hybrid::DhdScene scene(m, config);
+  EXPECT_EQ(scene.dt(), whole.step.dt);
+  for (int k = 0; k < 9; ++k) scene.step(10);
+  EXPECT_DOUBLE_EQ(scene.time(), 90 * scene.dt());
+  const auto& r = *whole.explicit_result;
+  EXPECT_EQ(r.displacement, std::vector<double>(scene.displacement(), scene.displacement() + 3 * m->num_nodes()));
+  EXPECT_EQ(r.reactions, scene.reactions());
+  ASSERT_EQ(r.energies.size(), scene.energies().size());
+  EXPECT_EQ(r.energies.back().strain, scene.energies().back().strain);
+}
+
+TEST(Scene, ConstraintsByNameProbeByPositionAndStaticConfigs) {
+  const auto m = std::make_shared<const mesh::TetMesh>(cuboid(3, 3, 3, 0.03, 0.03, 0.03));
+  nlohmann::json j = {{"mesh", "m"},
+                      {"boundary",
+                       {{"fixed", {"bottom"}},
+                        {"probe", {{"nearest", {0.03, 0.01, 0.02}}, {"stiffness", 20.0}, {"displacement", {0, 0, 0}}}}}},
+                      {"solver", {{"steps", 10}}}};
+  hybrid::DhdScene scene(m, parse(j, *m));
+  EXPECT_EQ(scene.constraint_index("fixed bottom"), 0);
+  try {
+    scene.constraint_index("top");
+    ADD_FAILURE() << "an unknown constraint name was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"fixed bottom\""), std::string::npos) << e.what();
+  }
+  const int node = dynamics::nearest_node(*m, Eigen::Vector3d(0.03, 0.01, 0.02));
+  EXPECT_EQ(scene.probe_position(), m->nodes[node]);
+  const Eigen::Vector3d tip = m->nodes[node] + Eigen::Vector3d(0.001, 0, 0);
+  scene.set_probe_position(tip);
+  EXPECT_EQ(scene.probe_position(), tip);
+  // The body at rest and the tip 1 mm out: the force read is the spring's, k · 1 mm along x.
+  EXPECT_TRUE(scene.probe_force().isApprox(Eigen::Vector3d(20.0 * 0.001, 0, 0), 1e-12));
+  scene.step(5);
+  EXPECT_GT(scene.displacement()[3 * node], 0.0);  // pulled towards the tip
+
+  j["solver"] = {{"kind", "static"}};
+  hybrid::DhdScene still(m, parse(j, *m));
+  EXPECT_THROW(still.step(1), InputError);
+  EXPECT_EQ(still.solve_static().displacement.size(), 3u * m->num_nodes());
 }

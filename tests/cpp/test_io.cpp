@@ -1,13 +1,18 @@
 // The artifact envelope and strict reading: every complaint names the file and JSON pointer.
+// The provenance commit is the source tree's, flagged dirty, whatever the current directory.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
 #include "softsim/io/artifact.hpp"
 #include "softsim/io/base64.hpp"
 #include "softsim/io/errors.hpp"
+#include "softsim/io/git_commit.hpp"
 #include "softsim/io/json_reader.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/result_fields.hpp"
@@ -194,4 +199,54 @@ TEST(MeshArtifact, TagSizeUnitsAndUnknownField) {
   p = unit_tet_payload();
   p["colour"] = "red";
   EXPECT_NE(mesh_error(p).find("/payload/colour: unknown field"), std::string::npos);
+}
+
+namespace {
+// Standard output of a shell command without its final newline; "unknown" if it fails (the
+// library's convention for a commit it cannot read).
+std::string output_of(const std::string& command) {
+  std::string out;
+  FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r");
+  if (!pipe) return "unknown";
+  char buffer[256];
+  while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
+  if (::pclose(pipe) != 0) return "unknown";
+  if (!out.empty() && out.back() == '\n') out.pop_back();
+  return out;
+}
+}  // namespace
+
+TEST(GitCommit, IsTheSourceTreesWhateverTheCurrentDirectory) {
+  if (std::getenv("SOFTSIM_GIT_COMMIT")) GTEST_SKIP() << "SOFTSIM_GIT_COMMIT replaces the source tree's commit";
+  const std::string expected = output_of("git -C '" SOFTSIM_SOURCE_DIR "' describe --always --dirty");
+  // Run from a directory outside any repository (the old reading, of the current directory,
+  // gave "unknown" there and another repository's commit elsewhere).
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(std::filesystem::temp_directory_path());
+  const std::string reported = io::git_commit();
+  std::filesystem::current_path(cwd);
+  EXPECT_EQ(reported, expected);
+}
+
+TEST(GitCommit, FlagsADirtyTreeAndFallsBackToUnknown) {
+  // A quote and a space in the path: it must reach git as one argument.
+  const auto repo = std::filesystem::temp_directory_path() / ("softsim git's " + std::to_string(::getpid()));
+  std::filesystem::remove_all(repo);
+  std::filesystem::create_directories(repo);
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(repo);
+  std::ofstream("tracked.txt") << "1\n";
+  const std::string committed = output_of(
+      "git init -q && git add tracked.txt && "
+      "git -c user.name=softsim -c user.email=softsim@localhost -c commit.gpgsign=false commit -q -m one && "
+      "git rev-parse --short HEAD");
+  std::filesystem::current_path(cwd);
+  ASSERT_NE(committed, "unknown") << "could not make a repository with git in " << repo;
+
+  EXPECT_EQ(io::describe_commit(repo.string()), committed);
+  std::ofstream(repo / "tracked.txt") << "2\n";
+  EXPECT_EQ(io::describe_commit(repo.string()), committed + "-dirty");
+  // The source tree gone (an installed binary on another machine): no commit, and no error.
+  std::filesystem::remove_all(repo);
+  EXPECT_EQ(io::describe_commit(repo.string()), "unknown");
 }

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
@@ -70,14 +73,68 @@ RpimSettings augmented() {
 
 // ---------------------------------------------------------------- quadrature
 
-TEST(GaussLegendre, ExactForDegree2nMinus1) {
-  for (int n = 1; n <= 10; ++n) {
+namespace {
+
+// Every order rpim_precompute accepts (plate.gauss_order and block.gauss_order: 1 to 10).
+constexpr int kMaxConfigOrder = 10;
+
+// The rule as this project computed it before it used GSL's: Newton's method on P_n from a
+// Chebyshev-like start, the weights from P_n' at the root.
+GaussRule newton_gauss_legendre(int n) {
+  GaussRule rule{std::vector<double>(n), std::vector<double>(n)};
+  const auto legendre = [n](double x) {  // (P_n(x), P_n'(x))
+    double p0 = 1, p1 = x;
+    for (int k = 2; k <= n; ++k) {
+      const double pk = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+      p0 = p1;
+      p1 = pk;
+    }
+    return std::pair{p1, n * (x * p1 - p0) / (x * x - 1)};
+  };
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    double x = std::cos(std::acos(-1.0) * (i + 0.75) / (n + 0.5));
+    for (int iter = 0; iter < 100; ++iter) {
+      const auto [p, dp] = legendre(x);
+      x -= p / dp;
+      if (std::abs(p / dp) < 1e-16) break;
+    }
+    const double dp = legendre(x).second;
+    rule.points[i] = -x;
+    rule.points[n - 1 - i] = x;
+    rule.weights[i] = rule.weights[n - 1 - i] = 2.0 / ((1 - x * x) * dp * dp);
+  }
+  if (n % 2 == 1) rule.points[n / 2] = 0.0;
+  return rule;
+}
+
+}  // namespace
+
+TEST(GaussLegendre, ExactForDegree2nMinus1ToRoundOff) {
+  // Summed in long double, so that what remains is the rounding of the rule's own points and
+  // weights: correctly rounded values leave less than one double epsilon on ∫x^d over [-1, 1].
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (int n = 1; n <= kMaxConfigOrder; ++n) {
     const GaussRule r = gauss_legendre(n);
+    ASSERT_EQ(r.points.size(), static_cast<std::size_t>(n));
+    for (int i = 1; i < n; ++i) EXPECT_LT(r.points[i - 1], r.points[i]) << "n = " << n;
     for (int degree = 0; degree <= 2 * n - 1; ++degree) {
-      double sum = 0;
-      for (int i = 0; i < n; ++i) sum += r.weights[i] * std::pow(r.points[i], degree);
-      const double exact = degree % 2 ? 0.0 : 2.0 / (degree + 1);
-      EXPECT_NEAR(sum, exact, 1e-14) << "n = " << n << ", degree " << degree;
+      long double sum = 0;
+      for (int i = 0; i < n; ++i) sum += static_cast<long double>(r.weights[i]) * std::pow(static_cast<long double>(r.points[i]), degree);
+      const long double exact = degree % 2 ? 0.0L : 2.0L / (degree + 1);
+      EXPECT_LE(std::abs(sum - exact), eps) << "n = " << n << ", degree " << degree;
+    }
+  }
+}
+
+TEST(GaussLegendre, MatchesTheNewtonRuleToRoundOff) {
+  // The Newton weights carry up to about 20 ulp (P_n' near a root loses digits); the points agree
+  // to an ulp or two. Beyond that the two rules must not differ.
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (int n = 1; n <= kMaxConfigOrder; ++n) {
+    const GaussRule gsl = gauss_legendre(n), newton = newton_gauss_legendre(n);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(gsl.points[i], newton.points[i], 2 * eps) << "n = " << n << ", point " << i;
+      EXPECT_NEAR(gsl.weights[i], newton.weights[i], 32 * eps * gsl.weights[i]) << "n = " << n << ", weight " << i;
     }
   }
 }

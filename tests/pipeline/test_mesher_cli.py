@@ -20,6 +20,18 @@ def test_help_and_version():
     assert r.returncode == 0 and r.stdout.startswith("mesher ")
 
 
+def test_tool_and_pipeline_name_the_same_commit(tmp_path):
+    """Provenance from a tool and from the pipeline's own artifacts agree: both read the source
+    tree's `git describe --always --dirty`, wherever the tool runs."""
+    import os
+    from pipeline.artifacts import git_commit
+    if os.environ.get("SOFTSIM_GIT_COMMIT"):
+        pytest.skip("SOFTSIM_GIT_COMMIT replaces the tools' commit")
+    r = run_tool("mesher", "--version", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip().endswith(f"({git_commit()})")
+
+
 def test_cuboid_artifact_envelope(tmp_path):
     cfg = write_json(tmp_path / "c.json", CUBOID)
     out = tmp_path / "m.json"

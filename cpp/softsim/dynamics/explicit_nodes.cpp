@@ -73,7 +73,7 @@ void ExplicitSolver::update_special(int i, int step, const double f[3], const do
   Eigen::Vector3d probe_force = Eigen::Vector3d::Zero();
   if (probe_here) {
     const Eigen::Vector3d ui(uc[3 * i], uc[3 * i + 1], uc[3 * i + 2]);
-    probe_force = scene_.probe.stiffness * (scene_.probe.displacement * scene_.probe.ramp.at(t) - ui);
+    probe_force = scene_.probe.stiffness * (scene_.probe.tip_displacement(t) - ui);
     for (int k = 0; k < 3; ++k)
       if (probe_free_[k]) un[3 * i + k] += A_[i] * probe_force[k];
     if (probe_force_ && step % opt_.trajectory_interval == 0)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "softsim/dynamics/central_difference.hpp"
@@ -21,15 +22,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// Per-thread slots on separate cache lines.
-struct alignas(64) ThreadSlot {
-  double min_j = 1e300;
-  bool bad = false;
-  std::array<double, fem::kNumElementKinds> kernel_seconds{};
-  double node_seconds = 0;
-  int timed_steps = 0;
-};
 
 constexpr int kTimingStride = 8;
 
@@ -83,9 +75,7 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
 
   dofs_ = resolve_constraints(scene_, n_);
   const std::vector<char> mask = constrained_mask(dofs_, n_);
-  moving_.assign(scene_.constraints.size(), 0);
-  for (std::size_t c = 0; c < scene_.constraints.size(); ++c)
-    moving_[c] = scene_.constraints[c].displacement.squaredNorm() > 0 && scene_.constraints[c].ramp.duration > 0;
+  moving_.assign(scene_.constraints.size(), 0);  // set by start()
   for (std::size_t l = 0; l < scene_.loads.size(); ++l)
     for (int node : scene_.loads[l].nodes) {
       if (node < 0 || node >= n_) throw InputError("load \"" + scene_.loads[l].name + "\": node out of range");
@@ -100,6 +90,11 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
   }
 
   element_ranges_ = elements_.balanced_ranges(opt_.threads);
+  initial_scene_ = scene_;
+  double total_mass = 0;
+  for (double m : mass_) total_mass += m;
+  const double total_volume = total_mass / elements_.material().elastic.density;
+  energy_floor_ = 1e-12 * elements_.material().elastic.youngs_modulus * total_volume;
   slot_energy_.assign(elements_.padded_size(), 0.0);
   slot_volume_ratio_.assign(elements_.padded_size(), 1.0);
   part_min_j_.assign(opt_.threads, 1e300);
@@ -114,24 +109,41 @@ void ExplicitSolver::set_initial_state(std::vector<double> u0, std::vector<doubl
   v0_ = std::move(v0);
 }
 
-ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
+void ExplicitSolver::fail_inversion(int step, double J, int e) const {
+  std::ostringstream msg;
+  msg << where(step, opt_.dt) << ": element " << e << " (" << fem::kind_name(elements_.kinds()[e])
+      << ") is inverted: J = " << J << " <= 0";
+  throw NumericalError(msg.str());
+}
+
+void ExplicitSolver::reset() {
+  started_ = false;
+  start();
+}
+
+void ExplicitSolver::start() {
   const int n3 = 3 * n_;
   const double dt = opt_.dt;
-  const int T = opt_.threads;
-  ExplicitResult res;
-  res.steps = opt_.steps;
-  res.dt = dt;
-  res.time = opt_.steps * dt;
+  scene_ = initial_scene_;
+  dofs_ = resolve_constraints(scene_, n_);
+  for (std::size_t c = 0; c < scene_.constraints.size(); ++c)
+    moving_[c] = scene_.constraints[c].displacement.squaredNorm() > 0 && scene_.constraints[c].ramp.duration > 0;
   dof_work_.assign(dofs_.size(), 0.0);
   dof_force_.assign(dofs_.size(), 0.0);
   load_work_.assign(loads_.size(), 0.0);
   probe_work_ = 0;
+  probe_previous_.setZero();
+  n_done_ = 0;
+  energies_.clear();
+  initial_energy_ = initial_bound_ = 0;
+  slots_.assign(opt_.threads, ThreadSlot());
+  loop_seconds_ = sample_seconds_ = 0;
 
-  std::array<std::vector<double>, 3> buf;
-  for (auto& b : buf) b.assign(n3, 0.0);
-  std::vector<double>& u0 = buf[1];
+  for (auto& b : buf_) b.assign(n3, 0.0);
+  std::vector<double>& u0 = buf_[1];
   if (!u0_.empty()) u0 = u0_;
-  std::vector<double> v0 = v0_.empty() ? std::vector<double>(n3, 0.0) : v0_;
+  v_start_ = v0_.empty() ? std::vector<double>(n3, 0.0) : v0_;
+  std::vector<double>& v0 = v_start_;
   for (const auto& d : dofs_) {
     u0[3 * d.node + d.component] = d.value * scene_.constraints[d.constraint].ramp.at(0.0);
     v0[3 * d.node + d.component] = 0.0;
@@ -147,7 +159,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
     msg << "initial state: element " << inverted.element << " is inverted (J = " << inverted.j << " <= 0)";
     throw NumericalError(msg.str());
   }
-  std::vector<double>& um1 = buf[0];
+  std::vector<double>& um1 = buf_[0];
   for (int i = 0; i < n_; ++i) {
     double f[3];
     elements_.gather(i, f);
@@ -165,69 +177,45 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
   if (scene_.has_probe && mass_[scene_.probe.node] > 0) {
     const int i = scene_.probe.node;
     const Eigen::Vector3d fp =
-        scene_.probe.stiffness * (scene_.probe.displacement * scene_.probe.ramp.at(0.0) -
-                                  Eigen::Vector3d(u0[3 * i], u0[3 * i + 1], u0[3 * i + 2]));
+        scene_.probe.stiffness *
+        (scene_.probe.tip_displacement(0.0) - Eigen::Vector3d(u0[3 * i], u0[3 * i + 1], u0[3 * i + 2]));
     for (int k = 0; k < 3; ++k) um1[3 * i + k] += 0.5 * dt * dt * fp[k] / mass_[i];
   }
   for (const auto& d : dofs_)
     um1[3 * d.node + d.component] = d.value * scene_.constraints[d.constraint].ramp.at(-dt);
+  started_ = true;
+}
 
-  // Recording buffers.
-  // Sized in 64 bits (steps / 1 + 1 exceeds the int range); no clock without trajectories.
-  const std::size_t n_traj_samples =
-      opt_.trajectory_nodes.empty() ? 0 : static_cast<std::size_t>(opt_.steps / opt_.trajectory_interval) + 1;
-  res.trajectories.assign(opt_.trajectory_nodes.size(), std::vector<Eigen::Vector3d>(n_traj_samples));
-  for (std::size_t j = 0; j < opt_.trajectory_nodes.size(); ++j) {
-    const int i = opt_.trajectory_nodes[j];
-    res.trajectories[j][0] = Eigen::Vector3d(u0[3 * i], u0[3 * i + 1], u0[3 * i + 2]);
-  }
-  for (std::size_t s = 0; s < n_traj_samples; ++s)
-    res.trajectory_time.push_back(static_cast<int>(s) * opt_.trajectory_interval * dt);
-  const int n_probe_samples = opt_.steps > 0 ? (opt_.steps - 1) / opt_.trajectory_interval + 1 : 0;
-  if (scene_.has_probe) {
-    res.probe_force.assign(n_probe_samples, Eigen::Vector3d::Zero());
-    for (int s = 0; s < n_probe_samples; ++s) res.probe_time.push_back(s * opt_.trajectory_interval * dt);
-  }
-  trajectories_ = &res.trajectories;
-  probe_force_ = scene_.has_probe ? &res.probe_force : nullptr;
-
-  if (snapshot && opt_.snapshot_interval > 0) snapshot(0, 0.0, u0, v0);
-
-  std::vector<ThreadSlot> slots(T);
-  double total_mass = 0;
-  for (double m : mass_) total_mass += m;
-  const double total_volume = total_mass / elements_.material().elastic.density;
-  const double energy_floor = 1e-12 * elements_.material().elastic.youngs_modulus * total_volume;
-  double initial_energy = 0, initial_bound = 0;
-  double sample_seconds = 0;
-
-  auto fail_inversion = [&](int step, double J, int e) {
-    std::ostringstream msg;
-    msg << where(step, dt) << ": element " << e << " (" << fem::kind_name(elements_.kinds()[e])
-        << ") is inverted: J = " << J << " <= 0";
-    throw NumericalError(msg.str());
-  };
-
+void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const ProgressFn& progress) {
+  if (steps < 0) throw InputError("solver: the step count must not be negative");
+  if (!started_) start();
+  const int n3 = 3 * n_;
+  const double dt = opt_.dt;
+  const int T = opt_.threads;
+  const long long target = static_cast<long long>(n_done_) + steps;
+  if (target > std::numeric_limits<int>::max()) throw InputError("solver: the step count exceeds the int range");
   const bool nodal_pressure = elements_.has_nodal_pressure();
-  int n_done = 0;
+  auto& buf = buf_;
   const auto t_loop = Clock::now();
-  while (n_done < opt_.steps) {
+  while (n_done_ < target) {
     // Next stop: an energy sample (after steps 1, 1 + interval, ...), a snapshot, or the end.
     // In 64 bits: with an interval near the int range the next multiple lies beyond it.
-    long long stop = opt_.steps;
+    long long stop = target;
     const long long ei = opt_.energy_interval;
+    const long long n_done = n_done_;
     const long long next_sample = n_done < 1 ? 1 : ((n_done - 1) / ei + 1) * ei + 1;
     stop = std::min(stop, next_sample);
+    if (opt_.steps > n_done) stop = std::min<long long>(stop, opt_.steps);
     if (opt_.snapshot_interval > 0) {
       const long long si = opt_.snapshot_interval;
       stop = std::min(stop, (n_done / si + 1) * si);
     }
-    const int s_begin = n_done, s_end = static_cast<int>(stop);
+    const int s_begin = n_done_, s_end = static_cast<int>(stop);
     int failed_step = -1;
     bool failed_inversion = false;
 
     parallel(T, [&](int tid, int nthreads) {
-      ThreadSlot& me = slots[tid];
+      ThreadSlot& me = slots_[tid];
       for (int s = s_begin; s < s_end; ++s) {
         const double* up = buf[s % 3].data();
         const double* uc = buf[(s + 1) % 3].data();
@@ -256,7 +244,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
         me.min_j = st.min_j;
         barrier();
         double gmin = 1e300;
-        for (int q = 0; q < nthreads; ++q) gmin = std::min(gmin, slots[q].min_j);
+        for (int q = 0; q < nthreads; ++q) gmin = std::min(gmin, slots_[q].min_j);
         if (gmin <= 0) {
           if (tid == 0) {
             failed_step = s;
@@ -272,7 +260,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
         me.bad = !(check == 0.0);
         barrier();
         bool any_bad = false;
-        for (int q = 0; q < nthreads; ++q) any_bad = any_bad || slots[q].bad;
+        for (int q = 0; q < nthreads; ++q) any_bad = any_bad || slots_[q].bad;
         if (any_bad) {
           if (tid == 0) failed_step = s;
           break;
@@ -281,6 +269,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
     });
 
     if (failed_step >= 0) {
+      started_ = false;  // the state is no longer a solution: the next advance() starts over
       const double* u = buf[(failed_step + (failed_inversion ? 1 : 2)) % 3].data();
       if (failed_inversion) {
         const MinJ inverted = min_j_element(elements_, u);
@@ -294,100 +283,194 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot) {
           << " is not finite (NaN or overflow); dt = " << dt << " s";
       throw NumericalError(msg.str());
     }
-    n_done = s_end;
-
-    const bool sample_due = (n_done - 1) % opt_.energy_interval == 0 || n_done == opt_.steps;
-    if (sample_due) {
-      const auto ts = Clock::now();
-      // After n steps: u_{n−2} = buf[(n−1)%3], u_{n−1} = buf[n%3], u_n = buf[(n+1)%3].
-      double mj = 1e300, bound_kinetic = 0;
-      int me = -1;
-      EnergySample s = sample_energy(n_done, buf[(n_done - 1) % 3].data(), buf[n_done % 3].data(),
-                                     buf[(n_done + 1) % 3].data(), bound_kinetic, mj, me);
-      if (mj <= 0) fail_inversion(n_done - 1, mj, me);
-      if (res.energies.empty()) {
-        initial_energy = s.kinetic + s.strain - s.external_work;
-        initial_bound = bound_kinetic + s.strain;
-      }
-      s.dissipated = initial_energy + s.external_work - s.kinetic - s.strain;
-      res.energies.push_back(s);
-      const double mechanical = bound_kinetic + s.strain;
-      // The conserved (half-step) kinetic energy cannot reveal an instability (it stays balanced
-      // even while a mode grows), so the check uses the non-negative mean of the half-step
-      // kinetic energies.
-      const double limit =
-          opt_.energy_growth_limit * (std::max(initial_bound, 0.0) + std::max(s.external_work, 0.0)) + energy_floor;
-      if (!(mechanical <= limit)) {
-        std::ostringstream msg;
-        msg << where(n_done - 1, dt) << ": kinetic + strain energy " << mechanical << " J exceeds "
-            << opt_.energy_growth_limit << " x (initial energy + external work) = " << limit
-            << " J: the integration is unstable (dt = " << dt << " s)";
-        throw NumericalError(msg.str());
-      }
-      sample_seconds += seconds_since(ts);
-    }
-    if (snapshot && opt_.snapshot_interval > 0 && n_done % opt_.snapshot_interval == 0) {
-      const std::vector<double>& un = buf[(n_done + 1) % 3];
-      const std::vector<double>& uc = buf[n_done % 3];
-      std::vector<double> v(n3);
-      for (int q = 0; q < n3; ++q) v[q] = (un[q] - uc[q]) / dt;
-      const auto ts = Clock::now();
-      snapshot(n_done, n_done * dt, un, v);
-      sample_seconds += seconds_since(ts);
-    }
+    n_done_ = s_end;
+    sample(snapshot);
+    if (progress) progress(n_done_, time());
   }
-  const double loop_seconds = seconds_since(t_loop);
+  loop_seconds_ += seconds_since(t_loop);
+}
 
-  const int last = opt_.steps;
-  res.displacement = buf[(last + 1) % 3];
-  res.velocity.assign(n3, 0.0);
-  if (last == 0) {
-    res.velocity = v0;
-  } else {
-    const std::vector<double>& before = buf[last % 3];
-    for (int q = 0; q < n3; ++q) res.velocity[q] = (res.displacement[q] - before[q]) / dt;
+// The energy sample, checks and snapshot due after the steps done.
+void ExplicitSolver::sample(const SnapshotFn& snapshot) {
+  const int n_done = n_done_;
+  const double dt = opt_.dt;
+  const int n3 = 3 * n_;
+  auto& buf = buf_;
+  const bool sample_due = (n_done - 1) % opt_.energy_interval == 0 || n_done == opt_.steps;
+  if (sample_due) {
+    const auto ts = Clock::now();
+    // After n steps: u_{n−2} = buf[(n−1)%3], u_{n−1} = buf[n%3], u_n = buf[(n+1)%3].
+    double mj = 1e300, bound_kinetic = 0;
+    int me = -1;
+    EnergySample s = sample_energy(n_done, buf[(n_done - 1) % 3].data(), buf[n_done % 3].data(),
+                                   buf[(n_done + 1) % 3].data(), bound_kinetic, mj, me);
+    if (mj <= 0) {
+      started_ = false;
+      fail_inversion(n_done - 1, mj, me);
+    }
+    if (energies_.empty()) {
+      initial_energy_ = s.kinetic + s.strain - s.external_work;
+      initial_bound_ = bound_kinetic + s.strain;
+    }
+    s.dissipated = initial_energy_ + s.external_work - s.kinetic - s.strain;
+    energies_.push_back(s);
+    const double mechanical = bound_kinetic + s.strain;
+    // The conserved (half-step) kinetic energy cannot reveal an instability (it stays balanced
+    // even while a mode grows), so the check uses the non-negative mean of the half-step
+    // kinetic energies.
+    const double limit =
+        opt_.energy_growth_limit * (std::max(initial_bound_, 0.0) + std::max(s.external_work, 0.0)) + energy_floor_;
+    if (!(mechanical <= limit)) {
+      started_ = false;
+      std::ostringstream msg;
+      msg << where(n_done - 1, dt) << ": kinetic + strain energy " << mechanical << " J exceeds "
+          << opt_.energy_growth_limit << " x (initial energy + external work) = " << limit
+          << " J: the integration is unstable (dt = " << dt << " s)";
+      throw NumericalError(msg.str());
+    }
+    sample_seconds_ += seconds_since(ts);
   }
+  if (snapshot && opt_.snapshot_interval > 0 && n_done % opt_.snapshot_interval == 0) {
+    const std::vector<double>& un = buf[(n_done + 1) % 3];
+    snapshot_velocity_.resize(n3);
+    velocity(snapshot_velocity_.data());
+    const auto ts = Clock::now();
+    snapshot(n_done, n_done * dt, un, snapshot_velocity_);
+    sample_seconds_ += seconds_since(ts);
+  }
+}
 
-  // Quasi-static reactions at the final time: internal force minus applied load.
+void ExplicitSolver::velocity(double* out) const {
+  const int n3 = 3 * n_;
+  if (n_done_ == 0) {
+    if (v_start_.empty()) std::fill(out, out + n3, 0.0);
+    else std::copy(v_start_.begin(), v_start_.end(), out);
+    return;
+  }
+  const double* u = buf_[(n_done_ + 1) % 3].data();
+  const double* before = buf_[n_done_ % 3].data();
+  for (int q = 0; q < n3; ++q) out[q] = (u[q] - before[q]) / opt_.dt;
+}
+
+std::vector<Eigen::Vector3d> ExplicitSolver::reactions() {
+  if (!started_) start();
+  // Quasi-static reactions: internal force minus applied load. (The next step recomputes the
+  // element forces from the same state, so this pass leaves the stepping unchanged.)
+  const double* u = displacement();
   fem::KernelStats st;
-  elements_.compute(res.displacement.data(), st);
-  res.reactions.assign(scene_.constraints.size(), Eigen::Vector3d::Zero());
-  const double t_end = res.time;
+  elements_.compute(u, st);
+  std::vector<Eigen::Vector3d> reactions(scene_.constraints.size(), Eigen::Vector3d::Zero());
+  const double t = time();
   for (const auto& d : dofs_) {
     double f[3];
     elements_.gather(d.node, f);
     double r = f[d.component] - mass_[d.node] * scene_.gravity[d.component];
     for (int e = load_begin_[d.node]; e < load_begin_[d.node + 1]; ++e) {
       const NodalLoad& load = scene_.loads[loads_[e].load];
-      r -= load.ramp.at(t_end) * load.force_per_node[d.component];
+      r -= load.ramp.at(t) * load.force_per_node[d.component];
     }
-    if (scene_.has_probe && scene_.probe.node == d.node) {
-      const int i = d.node;
-      r -= scene_.probe.stiffness * (scene_.probe.displacement[d.component] * scene_.probe.ramp.at(t_end) -
-                                     res.displacement[3 * i + d.component]);
-    }
-    res.reactions[d.constraint][d.component] += r;
+    if (scene_.has_probe && scene_.probe.node == d.node)
+      r -= scene_.probe.stiffness * (scene_.probe.tip_displacement(t)[d.component] - u[3 * d.node + d.component]);
+    reactions[d.constraint][d.component] += r;
   }
+  return reactions;
+}
 
-  ExplicitTiming& tm = res.timing;
-  tm.threads = T;
-  tm.wall_seconds = loop_seconds;
-  const double stepping = loop_seconds - sample_seconds;
-  tm.steps_per_second = stepping > 0 ? opt_.steps / stepping : 0;
+Eigen::Vector3d ExplicitSolver::probe_force() const {
+  if (!scene_.has_probe || !started_) return Eigen::Vector3d::Zero();
+  const int i = scene_.probe.node;
+  const double* u = displacement();
+  return scene_.probe.stiffness *
+         (scene_.probe.tip_displacement(time()) - Eigen::Vector3d(u[3 * i], u[3 * i + 1], u[3 * i + 2]));
+}
+
+void ExplicitSolver::set_prescribed_displacement(int c, const Eigen::Vector3d& value) {
+  if (c < 0 || c >= static_cast<int>(scene_.constraints.size()))
+    throw InputError("constraint " + std::to_string(c) + " out of range (the scene has " +
+                     std::to_string(scene_.constraints.size()) + ")");
+  if (!value.allFinite()) throw InputError("constraint \"" + scene_.constraints[c].name + "\": value is not finite");
+  if (!started_) start();
+  scene_.constraints[c].displacement = value;
+  scene_.constraints[c].ramp.duration = 0;
+  for (auto& d : dofs_)
+    if (d.constraint == c) d.value = value[d.component];
+  // Work is booked from the next step on; a dof that was held fixed did no work before it.
+  moving_[c] = 1;
+}
+
+void ExplicitSolver::set_probe_tip(const Eigen::Vector3d& tip_displacement) {
+  if (!scene_.has_probe) throw InputError("probe: the scene has no probe");
+  if (!tip_displacement.allFinite()) throw InputError("probe: tip position is not finite");
+  if (!started_) start();
+  scene_.probe.displacement = tip_displacement;
+  scene_.probe.ramp.duration = 0;
+}
+
+ExplicitTiming ExplicitSolver::timing() const {
+  ExplicitTiming tm;
+  tm.threads = opt_.threads;
+  tm.wall_seconds = loop_seconds_;
+  const double stepping = loop_seconds_ - sample_seconds_;
+  tm.steps_per_second = stepping > 0 ? n_done_ / stepping : 0;
   // Sampled timings scaled to all steps.
   int timed = 0;
-  for (const auto& s : slots) timed = std::max(timed, s.timed_steps);
-  const double scale = timed > 0 ? static_cast<double>(opt_.steps) / timed : 0.0;
-  for (const auto& s : slots) {
+  for (const auto& s : slots_) timed = std::max(timed, s.timed_steps);
+  const double scale = timed > 0 ? static_cast<double>(n_done_) / timed : 0.0;
+  for (const auto& s : slots_) {
     for (int k = 0; k < fem::kNumElementKinds; ++k) tm.kernel_seconds[k] += scale * s.kernel_seconds[k];
     tm.node_seconds += scale * s.node_seconds;
   }
   for (int k = 0; k < fem::kNumElementKinds; ++k) tm.element_counts[k] = elements_.count(static_cast<fem::ElementKind>(k));
-  tm.sample_seconds = sample_seconds;
-  trajectories_ = nullptr;
-  probe_force_ = nullptr;
+  tm.sample_seconds = sample_seconds_;
+  return tm;
+}
+
+ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot, const ProgressFn& progress) {
+  const int n3 = 3 * n_;
+  const double dt = opt_.dt;
+  reset();
+  ExplicitResult res;
+  res.steps = opt_.steps;
+  res.dt = dt;
+  res.time = opt_.steps * dt;
+
+  // Recording buffers.
+  // Sized in 64 bits (steps / 1 + 1 exceeds the int range); no clock without trajectories.
+  const double* u0 = displacement();
+  const std::size_t n_traj_samples =
+      opt_.trajectory_nodes.empty() ? 0 : static_cast<std::size_t>(opt_.steps / opt_.trajectory_interval) + 1;
+  res.trajectories.assign(opt_.trajectory_nodes.size(), std::vector<Eigen::Vector3d>(n_traj_samples));
+  for (std::size_t j = 0; j < opt_.trajectory_nodes.size(); ++j) {
+    const int i = opt_.trajectory_nodes[j];
+    res.trajectories[j][0] = Eigen::Vector3d(u0[3 * i], u0[3 * i + 1], u0[3 * i + 2]);
+  }
+  for (std::size_t s = 0; s < n_traj_samples; ++s)
+    res.trajectory_time.push_back(static_cast<int>(s) * opt_.trajectory_interval * dt);
+  const int n_probe_samples = opt_.steps > 0 ? (opt_.steps - 1) / opt_.trajectory_interval + 1 : 0;
+  if (scene_.has_probe) {
+    res.probe_force.assign(n_probe_samples, Eigen::Vector3d::Zero());
+    for (int s = 0; s < n_probe_samples; ++s) res.probe_time.push_back(s * opt_.trajectory_interval * dt);
+  }
+  trajectories_ = &res.trajectories;
+  probe_force_ = scene_.has_probe ? &res.probe_force : nullptr;
+  struct ClearTargets {
+    ExplicitSolver* s;
+    ~ClearTargets() {
+      s->trajectories_ = nullptr;
+      s->probe_force_ = nullptr;
+    }
+  } clear_targets{this};
+
+  if (snapshot && opt_.snapshot_interval > 0) snapshot(0, 0.0, buf_[1], v_start_);
+  advance(opt_.steps, snapshot, progress);
+
+  res.displacement.assign(displacement(), displacement() + n3);
+  res.velocity.resize(n3);
+  velocity(res.velocity.data());
+  res.energies = energies_;
+  res.reactions = reactions();
+  res.timing = timing();
   return res;
 }
 
 }  // namespace softsim::dynamics
-

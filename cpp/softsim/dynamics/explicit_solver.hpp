@@ -83,7 +83,15 @@ struct ExplicitResult {
 
 using SnapshotFn = std::function<void(int step, double time, const std::vector<double>& u,
                                       const std::vector<double>& v)>;
+// Called between chunks of steps (at most `energy_interval` steps apart) with the steps done so
+// far and the simulated time; a caller prints progress from it. It must not touch the solver.
+using ProgressFn = std::function<void(int steps_done, double time)>;
 
+// Set-up once (constructor), then either run() — the whole configured run with its recordings,
+// as dhd_sim does — or the stepping interface: advance(n) from the current state, with the
+// prescribed displacements and the probe moved between calls and the state read in place.
+// Both share one stepping loop (advance), so a run() equals the same number of steps advanced
+// in any number of calls, bit for bit.
 class ExplicitSolver {
  public:
   // `masses`: lumped nodal masses (see lumped_mass.hpp). Throws InputError for bad options.
@@ -91,10 +99,49 @@ class ExplicitSolver {
                  const ExplicitOptions& options);
 
   // Initial displacement and velocity (3 per node); default zero. Constrained components take
-  // their prescribed values regardless.
+  // their prescribed values regardless. Takes effect at the next reset() (run() resets).
   void set_initial_state(std::vector<double> u0, std::vector<double> v0);
 
-  ExplicitResult run(const SnapshotFn& snapshot = {});
+  // The whole run of `options.steps` steps from the initial state, with trajectories, probe
+  // force history, energy samples, snapshots and the final reactions.
+  ExplicitResult run(const SnapshotFn& snapshot = {}, const ProgressFn& progress = {});
+
+  // ---- stepping interface ----
+  // Back to t = 0: the scene as constructed, the initial state and the start-up step of
+  // 000 eq. 33 (u(−Δt)); energy samples, work and timing cleared. The constructor does not
+  // step: the first advance() resets if nothing has yet.
+  void reset();
+  // `steps` more central-difference steps (000 eq. 33) from the current state. Energy samples
+  // and the energy/inversion checks happen after steps 1, 1 + energy_interval, ... and after
+  // step `options.steps`, as in run(). Throws NumericalError on a failure, after which the
+  // state is undefined: reset() before stepping again.
+  void advance(int steps, const SnapshotFn& snapshot = {}, const ProgressFn& progress = {});
+  int steps_done() const { return n_done_; }
+  double time() const { return n_done_ * opt_.dt; }
+  double dt() const { return opt_.dt; }
+  int num_nodes() const { return n_; }
+  const ExplicitOptions& options() const { return opt_; }
+  const Scene& scene() const { return scene_; }
+  // u(time), 3 per node, in place: valid until the next advance() or reset().
+  const double* displacement() const { return buf_[(n_done_ + 1) % 3].data(); }
+  // (u(time) − u(time − Δt)) / Δt into `out` (3 per node); the initial velocity at step 0.
+  void velocity(double* out) const;
+  // Per constraint: F_int(u) − R at the current time (quasi-static: inertia left out). One
+  // element pass over the whole set.
+  std::vector<Eigen::Vector3d> reactions();
+  // The probe spring's force on its node at the current state, k (tip(t) − u_node); zero
+  // without a probe.
+  Eigen::Vector3d probe_force() const;
+  // Energy samples taken since the last reset.
+  const std::vector<EnergySample>& energies() const { return energies_; }
+  // Timing of the steps since the last reset.
+  ExplicitTiming timing() const;
+
+  // Between steps: constraint `c` holds `value` (m, the components it constrains) from the next
+  // step on, its ramp dropped; its work is booked as for a moving constraint from then on.
+  void set_prescribed_displacement(int c, const Eigen::Vector3d& value);
+  // Between steps: the probe's tip sits at X_node + `tip_displacement` from the next step on.
+  void set_probe_tip(const Eigen::Vector3d& tip_displacement);
 
  private:
   struct LoadEntry {
@@ -102,8 +149,18 @@ class ExplicitSolver {
     int load;
     std::array<bool, 3> free;
   };
+  // Per-thread slots on separate cache lines.
+  struct alignas(64) ThreadSlot {
+    double min_j = 1e300;
+    bool bad = false;
+    std::array<double, fem::kNumElementKinds> kernel_seconds{};
+    double node_seconds = 0;
+    int timed_steps = 0;
+  };
 
   void build_schedule();
+  void start();
+  void sample(const SnapshotFn& snapshot);
   template <bool kGravity>
   void update_node(int i, const double* up, const double* uc, double* un, double& check, double f[3]) const;
   template <bool kGravity>
@@ -115,16 +172,18 @@ class ExplicitSolver {
   EnergySample sample_energy(int n_done, const double* u_before, const double* u_mid, const double* u_after,
                              double& bound_kinetic, double& min_j, int& min_j_element);
   double external_work() const;
+  [[noreturn]] void fail_inversion(int step, double J, int element) const;
 
   fem::ElementSet& elements_;
   std::vector<double> mass_;
-  Scene scene_;
+  Scene initial_scene_;  // as constructed: reset() returns to it
+  Scene scene_;          // as driven between steps
   ExplicitOptions opt_;
   int n_ = 0;
   std::vector<double> A_, B_, C_, Am_;
   bool gravity_ = false;
   std::vector<ConstrainedDof> dofs_;
-  std::vector<char> moving_;  // per constraint: prescribed value non-zero and ramped
+  std::vector<char> moving_;  // per constraint: prescribed value non-zero and ramped, or driven
   std::vector<LoadEntry> loads_;
   std::vector<int> element_ranges_;                    // per part, for the energy samples
   // Scratch of the energy samples, sized once: strain energy and J per element slot, and per part
@@ -143,7 +202,19 @@ class ExplicitSolver {
   std::array<bool, 3> probe_free_ = {true, true, true};
   Eigen::Vector3d probe_previous_ = Eigen::Vector3d::Zero();
   std::vector<double> u0_, v0_;
-  // Per-run recording targets.
+  double energy_floor_ = 0;  // energies below it are round-off (growth check)
+
+  // The state: u_{n−1}, u_n, u_{n+1} rotate through buf_ (u_n = buf_[(n + 1) % 3]).
+  std::array<std::vector<double>, 3> buf_;
+  std::vector<double> v_start_;  // the initial velocity as imposed (constrained components zero)
+  bool started_ = false;
+  int n_done_ = 0;
+  std::vector<EnergySample> energies_;
+  double initial_energy_ = 0, initial_bound_ = 0;
+  std::vector<ThreadSlot> slots_;
+  double loop_seconds_ = 0, sample_seconds_ = 0;
+  std::vector<double> snapshot_velocity_;
+  // Per-run recording targets (run() only).
   std::vector<std::vector<Eigen::Vector3d>>* trajectories_ = nullptr;
   std::vector<Eigen::Vector3d>* probe_force_ = nullptr;
 };

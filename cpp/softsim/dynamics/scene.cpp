@@ -13,6 +13,8 @@ double Ramp::at(double t) const {
   return shape == Shape::linear ? s : s * s * (3.0 - 2.0 * s);
 }
 
+Eigen::Vector3d ProbeSpring::tip_displacement(double t) const { return displacement * ramp.at(t); }
+
 std::vector<ConstrainedDof> resolve_constraints(const Scene& scene, int num_nodes) {
   std::map<std::pair<int, int>, ConstrainedDof> dofs;
   for (std::size_t c = 0; c < scene.constraints.size(); ++c) {

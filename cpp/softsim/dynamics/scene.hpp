@@ -42,6 +42,10 @@ struct ProbeSpring {
   double stiffness = 0;                                    // N/m
   Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // of the tip, relative to X_node (m)
   Ramp ramp;
+  // The tip relative to X_node at time t. Rounded once, as a position (out of line, so the
+  // compiler cannot fuse it into the spring law): a tip set between steps to the same value
+  // gives the same forces, bit for bit.
+  Eigen::Vector3d tip_displacement(double t) const;
 };
 
 struct Scene {

@@ -6,6 +6,7 @@
 #endif
 #include "softsim/dynamics/static_solver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -77,6 +78,12 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
   const double force_floor = 1e-6 * material.elastic.youngs_modulus * h * h;
 
   StaticResult res;
+  // Every element linear (000 eqs. 4–12): F_int = K u with a constant K, the loads, constraints and
+  // probe spring are linear too, so one solve of K u = R is the exact solution. No load
+  // increments are needed, and no inversion check: the small-strain model does not see the
+  // deformed geometry, so a solution whose mapped geometry inverts is still its solution.
+  res.linear_solve = std::all_of(kinds.begin(), kinds.end(), [](fem::ElementKind k) { return k == fem::ElementKind::linear; });
+  const int increments = res.linear_solve ? 1 : opt.increments;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n3);
   Eigen::VectorXd f_int(n3), r(n3), R(n3), du(n3), rhs(n3), target(n3);
   Eigen::SparseMatrix<double> K = assembler.pattern();
@@ -108,8 +115,8 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
     return pi;
   };
 
-  for (int inc = 1; inc <= opt.increments; ++inc) {
-    const double lambda = static_cast<double>(inc) / opt.increments;
+  for (int inc = 1; inc <= increments; ++inc) {
+    const double lambda = static_cast<double>(inc) / increments;
     target = u;
     for (const auto& d : dofs) target[3 * d.node + d.component] = lambda * d.value;
     int it = 0;
@@ -123,7 +130,7 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
       if (rnorm <= opt.tolerance * scale && jump == 0.0) break;
       if (it >= opt.max_iterations) {
         std::ostringstream msg;
-        msg << "static: increment " << inc << "/" << opt.increments << " did not converge in " << opt.max_iterations
+        msg << "static: increment " << inc << "/" << increments << " did not converge in " << opt.max_iterations
             << " Newton iterations: residual " << rnorm << " N > limit " << opt.tolerance * scale << " N";
         throw NumericalError(msg.str());
       }
@@ -167,7 +174,7 @@ StaticResult solve_static(const mesh::TetMesh& mesh, const std::vector<fem::Elem
         trial = u + step * du;
         if (step == 1.0)
           for (const auto& d : dofs) trial[3 * d.node + d.component] = target[3 * d.node + d.component];
-        if (assembler.min_volume_ratio(trial.data()) <= 0) continue;
+        if (!res.linear_solve && assembler.min_volume_ratio(trial.data()) <= 0) continue;
         residual(lambda, trial, r_trial, trial_scale);
         if (jump > 0 || free_norm2(r_trial) <= old_norm || ls >= 8 || potential(lambda, trial) < old_energy) {
           accepted = true;

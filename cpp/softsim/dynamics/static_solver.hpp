@@ -5,6 +5,8 @@
 // loads are scaled by k/N in increment k (ramps are ignored). Each Newton step imposes the
 // constraint increment in the linear solve, and backtracks (halving) while an element would
 // invert or the residual grows. Linear systems: sparse LDLᵀ (Eigen), LU as a fallback.
+// When every element is linear the problem is linear: one increment, one solve K u = R, and
+// no inversion check (small-strain elements ignore the deformed geometry).
 #include <vector>
 
 #include <Eigen/Core>
@@ -30,6 +32,7 @@ struct StaticResult {
   double force_scale = 0;                  // the scale the tolerance multiplies (N)
   double strain_energy = 0;                // J
   Eigen::Vector3d probe_force = Eigen::Vector3d::Zero();
+  bool linear_solve = false;  // every element linear: one solve of K u = R, no increments, no inversion check
 };
 
 // Throws NumericalError when an increment does not converge or the tangent is singular (for

@@ -5,12 +5,11 @@
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/node_selection.hpp"
 #include "softsim/fem/element_set.hpp"
+#include "softsim/hybrid/dhd_scene.hpp"
 
 namespace softsim::hybrid {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 nlohmann::json vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
@@ -20,44 +19,30 @@ nlohmann::json field(const std::vector<double>& u) {
   return a;
 }
 
-dynamics::ExplicitOptions explicit_options(const DhdConfig& c, double dt) {
-  dynamics::ExplicitOptions o;
-  o.dt = dt;
-  o.steps = c.explicit_solver.steps;
-  o.damping_alpha = c.damping_alpha;
-  o.threads = c.threads;
-  o.energy_interval = c.explicit_solver.energy_interval;
-  o.energy_growth_limit = c.explicit_solver.energy_growth_limit;
-  o.trajectory_nodes = c.output.trajectory_nodes;
-  o.trajectory_interval = c.output.trajectory_interval;
-  o.snapshot_interval = c.output.vtu_interval;
-  return o;
-}
-
 }  // namespace
 
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, const dynamics::SnapshotFn& snapshot) {
-  return run_dhd(mesh, c, make_partition(mesh, c.partition), snapshot);
+  return run_dhd(mesh, c, make_partition(mesh, c.partition), snapshot, {});
 }
 
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::ElementKind> kinds,
-               const dynamics::SnapshotFn& snapshot) {
-  const auto t0 = Clock::now();
+               const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress) {
+  // The scene borrows the caller's mesh for the run (no copy).
+  DhdScene scene(std::shared_ptr<const mesh::TetMesh>(&mesh, [](const mesh::TetMesh*) {}), c, std::move(kinds));
   DhdRun run;
-  run.kinds = std::move(kinds);
-  run.critical = dynamics::critical_time_step(mesh, c.material.elastic);
-  if (c.static_solver) {
-    run.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    run.static_result = dynamics::solve_static(mesh, run.kinds, c.material, c.scene, c.static_options);
-    return run;
+  run.critical = scene.critical_step();
+  run.setup_seconds = scene.setup_seconds();
+  if (scene.is_static()) {
+    // Wall time of the Newton solve alone (assembly, factorisations, increments), the static
+    // counterpart of the explicit stepping loop's wall_seconds.
+    const auto t0 = std::chrono::steady_clock::now();
+    run.static_result = scene.solve_static();
+    run.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  } else {
+    run.step = scene.step_choice();
+    run.explicit_result = scene.run(snapshot, progress);
   }
-  run.step = dynamics::choose_time_step(run.critical, c.explicit_solver.dt, c.explicit_solver.safety_factor,
-                                        c.explicit_solver.force_dt);
-  fem::ElementSet elements(mesh, run.kinds, c.material);
-  dynamics::ExplicitSolver solver(elements, dynamics::lumped_mass(mesh, c.material.elastic.density), c.scene,
-                                  explicit_options(c, run.step.dt));
-  run.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  run.explicit_result = solver.run(snapshot);
+  run.kinds = scene.kinds();
   return run;
 }
 
@@ -100,8 +85,9 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
   if (run.static_result) {
     const auto& s = *run.static_result;
     p["solver"] = {{"kind", "static"},
-                   {"method", "newton"},
-                   {"increments", c.static_options.increments},
+                   // A linear model is solved once (K u = R), without increments or inversion check.
+                   {"method", s.linear_solve ? "linear" : "newton"},
+                   {"increments", s.linear_solve ? 1 : c.static_options.increments},
                    {"iterations", s.iterations},
                    {"residual", s.residual},
                    {"force_scale", s.force_scale},
@@ -109,7 +95,7 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
     p["energies"] = {{"strain", s.strain_energy}};
     if (c.scene.has_probe)
       p["probe"] = {{"node", c.scene.probe.node}, {"final_force", vec3(s.probe_force)}};
-    p["timing"] = {{"setup_seconds", run.setup_seconds}};
+    p["timing"] = {{"setup_seconds", run.setup_seconds}, {"solve_seconds", run.solve_seconds}};
     return p;
   }
   const auto& r = *run.explicit_result;

@@ -26,13 +26,15 @@ struct DhdRun {
   std::optional<dynamics::ExplicitResult> explicit_result;
   std::optional<dynamics::StaticResult> static_result;
   double setup_seconds = 0;  // critical step, element set and solver set-up (the partition excluded)
+  double solve_seconds = 0;  // static runs: wall time of solve_static (0 for explicit runs)
 };
 
 // Throws InputError (bad step request, ...) or NumericalError (failure during the solve).
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, const dynamics::SnapshotFn& snapshot = {});
 // The same with the partition already made: `kinds` as make_partition(mesh, config.partition).
+// `progress` is called between chunks of explicit steps (see dynamics::ProgressFn).
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, std::vector<fem::ElementKind> kinds,
-               const dynamics::SnapshotFn& snapshot);
+               const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress = {});
 
 nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& config, const DhdRun& run);
 

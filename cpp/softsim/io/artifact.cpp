@@ -36,8 +36,7 @@ void require_finite(const nlohmann::json& value, const std::string& what) {
     throw NumericalError(what + ": non-finite value at " + (where.empty() ? "/" : where));
 }
 
-nlohmann::json make_artifact(const std::string& schema_name, int schema_version,
-                             const Provenance& provenance, nlohmann::json payload) {
+nlohmann::json provenance_json(const Provenance& provenance) {
   nlohmann::json inputs = nlohmann::json::object();
   for (const auto& [path, hash] : provenance.input_sha256) inputs[path] = hash;
   nlohmann::json prov = {{"tool", provenance.tool},
@@ -47,16 +46,32 @@ nlohmann::json make_artifact(const std::string& schema_name, int schema_version,
                          {"inputs", inputs},
                          {"seed", nullptr}};
   if (provenance.seed) prov["seed"] = *provenance.seed;
+  return prov;
+}
+
+namespace {
+nlohmann::json envelope(const std::string& schema_name, int schema_version, nlohmann::json provenance,
+                        nlohmann::json payload) {
   return {{"schema", {{"name", schema_name}, {"version", schema_version}}},
-          {"provenance", prov},
+          {"provenance", std::move(provenance)},
           {"payload", std::move(payload)}};
+}
+}  // namespace
+
+nlohmann::json make_artifact(const std::string& schema_name, int schema_version,
+                             const Provenance& provenance, nlohmann::json payload) {
+  return envelope(schema_name, schema_version, provenance_json(provenance), std::move(payload));
 }
 
 void write_artifact(const std::string& path, const std::string& schema_name, int schema_version,
                     const Provenance& provenance, nlohmann::json payload) {
+  write_artifact(path, schema_name, schema_version, provenance_json(provenance), std::move(payload));
+}
+
+void write_artifact(const std::string& path, const std::string& schema_name, int schema_version,
+                    const nlohmann::json& provenance, nlohmann::json payload) {
   require_finite(payload, schema_name + " payload");
-  const nlohmann::json doc =
-      make_artifact(schema_name, schema_version, provenance, std::move(payload));
+  const nlohmann::json doc = envelope(schema_name, schema_version, provenance, std::move(payload));
   write_file_atomic(path, doc.dump(1) + "\n");
 }
 

@@ -25,10 +25,17 @@ struct Provenance {
 nlohmann::json make_artifact(const std::string& schema_name, int schema_version,
                              const Provenance& provenance, nlohmann::json payload);
 
+// The envelope's "provenance" member: the tool, this build's version and commit, the config, inputs, seed.
+nlohmann::json provenance_json(const Provenance& provenance);
+
 // Builds the envelope and writes it atomically. Refuses to write a payload holding NaN or Inf
 // (JSON cannot carry them and they always mean a numerical failure upstream).
 void write_artifact(const std::string& path, const std::string& schema_name, int schema_version,
                     const Provenance& provenance, nlohmann::json payload);
+// The same with the provenance already made (an artifact read back and written again keeps the
+// provenance of the run that made it).
+void write_artifact(const std::string& path, const std::string& schema_name, int schema_version,
+                    const nlohmann::json& provenance, nlohmann::json payload);
 
 // A parsed artifact. `payload()` is a strict reader over the payload.
 class Artifact {

@@ -1,6 +1,6 @@
 #pragma once
 // Gauss–Legendre rules on [-1, 1]: the quadrature of the background cells (002 §2.3:
-// "Gaussian integral points are determined by Gauss–Legendre formula in each unit").
+// "Gaussian integral points are determined by Gauss–Legendre formula in each unit"), from GSL.
 #include <vector>
 
 namespace softsim::meshless {

@@ -1,0 +1,84 @@
+#include "softsim/hybrid/dhd_scene.hpp"
+
+#include <chrono>
+
+#include "softsim/dynamics/lumped_mass.hpp"
+#include "softsim/io/errors.hpp"
+
+namespace softsim::hybrid {
+
+dynamics::ExplicitOptions explicit_options(const DhdConfig& c, double dt) {
+  dynamics::ExplicitOptions o;
+  o.dt = dt;
+  o.steps = c.explicit_solver.steps;
+  o.damping_alpha = c.damping_alpha;
+  o.threads = c.threads;
+  o.energy_interval = c.explicit_solver.energy_interval;
+  o.energy_growth_limit = c.explicit_solver.energy_growth_limit;
+  o.trajectory_nodes = c.output.trajectory_nodes;
+  o.trajectory_interval = c.output.trajectory_interval;
+  o.snapshot_interval = c.output.vtu_interval;
+  return o;
+}
+
+DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config)
+    : DhdScene(mesh, config, make_partition(*mesh, config.partition)) {}
+
+DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, std::vector<fem::ElementKind> kinds)
+    : mesh_(std::move(mesh)), config_(std::move(config)), kinds_(std::move(kinds)) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  if (static_cast<int>(kinds_.size()) != mesh_->num_tets())
+    throw InputError("partition: " + std::to_string(kinds_.size()) + " element kinds for " +
+                     std::to_string(mesh_->num_tets()) + " tetrahedra");
+  critical_ = dynamics::critical_time_step(*mesh_, config_.material.elastic);
+  if (!config_.static_solver) {
+    step_ = dynamics::choose_time_step(critical_, config_.explicit_solver.dt, config_.explicit_solver.safety_factor,
+                                       config_.explicit_solver.force_dt);
+    elements_ = std::make_unique<fem::ElementSet>(*mesh_, kinds_, config_.material);
+    solver_ = std::make_unique<dynamics::ExplicitSolver>(
+        *elements_, dynamics::lumped_mass(*mesh_, config_.material.elastic.density), config_.scene,
+        explicit_options(config_, step_.dt));
+  }
+  setup_seconds_ = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+dynamics::ExplicitSolver& DhdScene::solver() {
+  if (!solver_) throw InputError("solver: the config's solver is static; step() needs \"kind\": \"explicit\"");
+  return *solver_;
+}
+
+const dynamics::ExplicitSolver& DhdScene::solver() const { return const_cast<DhdScene*>(this)->solver(); }
+
+int DhdScene::constraint_index(const std::string& name) const {
+  const auto& cs = config_.scene.constraints;
+  std::string known;
+  for (std::size_t c = 0; c < cs.size(); ++c) {
+    if (cs[c].name == name) return static_cast<int>(c);
+    known += (known.empty() ? "\"" : ", \"") + cs[c].name + "\"";
+  }
+  throw InputError("boundary: no constraint named \"" + name + "\" (the scene has " +
+                   (known.empty() ? std::string("none") : known) + ")");
+}
+
+void DhdScene::set_probe_position(const Eigen::Vector3d& x) {
+  const auto& probe = config_.scene.probe;
+  if (!config_.scene.has_probe) throw InputError("probe: the scene has no probe (boundary.probe)");
+  solver().set_probe_tip(x - mesh_->nodes[probe.node]);
+}
+
+Eigen::Vector3d DhdScene::probe_position() const {
+  if (!config_.scene.has_probe) throw InputError("probe: the scene has no probe (boundary.probe)");
+  const auto& probe = solver().scene().probe;
+  return mesh_->nodes[probe.node] + probe.tip_displacement(time());
+}
+
+dynamics::ExplicitResult DhdScene::run(const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress) {
+  return solver().run(snapshot, progress);
+}
+
+dynamics::StaticResult DhdScene::solve_static() const {
+  return dynamics::solve_static(*mesh_, kinds_, config_.material, config_.scene, config_.static_options);
+}
+
+}  // namespace softsim::hybrid

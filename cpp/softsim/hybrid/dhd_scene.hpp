@@ -1,0 +1,87 @@
+#pragma once
+// One dhd_sim scene, built from the same config dhd_sim reads, as an object a caller steps:
+// set-up once (partition, critical step, element set, lumped masses, the explicit solver), then
+//   scene.step(n); read displacement / velocity / reactions / probe force / energies in place;
+//   move a prescribed displacement or the probe between steps; repeat.
+// This is the loop researchers write around a simulation (move the tool, step, read the force)
+// and the one engine under dhd_sim (run() is the whole configured run) and the Python API.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "softsim/dynamics/explicit_solver.hpp"
+#include "softsim/dynamics/stable_step.hpp"
+#include "softsim/dynamics/static_solver.hpp"
+#include "softsim/fem/element_set.hpp"
+#include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/mesh/tet_mesh.hpp"
+
+namespace softsim::hybrid {
+
+class DhdScene {
+ public:
+  // The partition is made from `config.partition`, or given as `kinds` (one per tetrahedron).
+  // Throws InputError (bad step request, bad scene) as dhd_sim would report it.
+  DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config);
+  DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, std::vector<fem::ElementKind> kinds);
+  DhdScene(const DhdScene&) = delete;
+  DhdScene& operator=(const DhdScene&) = delete;
+
+  const mesh::TetMesh& mesh() const { return *mesh_; }
+  const DhdConfig& config() const { return config_; }
+  const std::vector<fem::ElementKind>& kinds() const { return kinds_; }
+  const dynamics::CriticalStep& critical_step() const { return critical_; }
+  const dynamics::StepChoice& step_choice() const { return step_; }
+  double setup_seconds() const { return setup_seconds_; }
+  bool is_static() const { return config_.static_solver; }
+
+  // ---- explicit dynamics (InputError if the config's solver is static) ----
+  dynamics::ExplicitSolver& solver();
+  const dynamics::ExplicitSolver& solver() const;
+  void step(int n = 1) { solver().advance(n); }
+  void reset() { solver().reset(); }
+  double time() const { return solver().time(); }
+  int steps_done() const { return solver().steps_done(); }
+  double dt() const { return step_.dt; }
+  int num_nodes() const { return mesh_->num_nodes(); }
+  // u(t), 3 per node, in place: valid until the next step() or reset().
+  const double* displacement() const { return solver().displacement(); }
+  void velocity(double* out) const { solver().velocity(out); }
+  std::vector<Eigen::Vector3d> reactions() { return solver().reactions(); }
+  Eigen::Vector3d probe_force() const { return solver().probe_force(); }
+  const std::vector<dynamics::EnergySample>& energies() const { return solver().energies(); }
+
+  // Index of the constraint named `name` (boundary.fixed / boundary.prescribed entries, named as
+  // in the dhd_result's "reactions"); InputError naming the known names if there is none.
+  int constraint_index(const std::string& name) const;
+  void set_prescribed_displacement(int constraint, const Eigen::Vector3d& value) {
+    solver().set_prescribed_displacement(constraint, value);
+  }
+  // The probe's tip at world position `x` (m), from the next step on.
+  void set_probe_position(const Eigen::Vector3d& x);
+  // The probe tip's world position now.
+  Eigen::Vector3d probe_position() const;
+
+  // The whole configured run (config.explicit_solver.steps steps from t = 0), as dhd_sim runs it.
+  dynamics::ExplicitResult run(const dynamics::SnapshotFn& snapshot = {}, const dynamics::ProgressFn& progress = {});
+
+  // ---- static equilibrium of the same model (000 eq. 24) ----
+  dynamics::StaticResult solve_static() const;
+
+ private:
+  std::shared_ptr<const mesh::TetMesh> mesh_;
+  DhdConfig config_;
+  std::vector<fem::ElementKind> kinds_;
+  dynamics::CriticalStep critical_;
+  dynamics::StepChoice step_;
+  std::unique_ptr<fem::ElementSet> elements_;
+  std::unique_ptr<dynamics::ExplicitSolver> solver_;
+  double setup_seconds_ = 0;
+};
+
+// The solver options of a dhd_sim config at time step `dt`.
+dynamics::ExplicitOptions explicit_options(const DhdConfig& config, double dt);
+
+}  // namespace softsim::hybrid

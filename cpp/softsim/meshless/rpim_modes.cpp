@@ -1,0 +1,147 @@
+#include "softsim/meshless/rpim_modes.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "softsim/meshless/lee_radok.hpp"
+#include "softsim/meshless/result_json.hpp"
+#include "softsim/meshless/rpim_config.hpp"
+
+namespace softsim::meshless {
+
+namespace {
+
+RpimSettings read_settings(const io::JsonReader& cfg) {
+  return read_rpim_settings(cfg.optional("rpim"), cfg.optional("penalty"), cfg.optional("solver"));
+}
+
+RpimOutput run_dataset(const io::JsonReader& cfg) {
+  const PlateScene scene = read_plate_scene(cfg.optional("plate"));
+  const RpimSettings settings = read_settings(cfg);
+  const DatasetSpec spec = read_dataset_spec(cfg.at("dataset"));
+  bool all_nodes = false, stiffness_conditioning = true;
+  if (const auto out = cfg.optional("output")) {
+    all_nodes = out->get_bool("all_nodes", false);
+    stiffness_conditioning = out->get_bool("stiffness_conditioning", true);
+    out->reject_unknown();
+  }
+  std::optional<IndentationInputs> indentation;
+  if (const auto ind = cfg.optional("indentation")) indentation = read_indentation(*ind);
+  cfg.reject_unknown();
+  RpimOutput out{"rpim_dataset", nullptr, std::nullopt, ""};
+  if (spec.kind == DatasetKind::random) out.seed = spec.seed;
+
+  const PlateRun run = run_plate(scene, settings, dataset_forces(spec), stiffness_conditioning);
+  out.payload = dataset_payload(scene, settings, spec, run, all_nodes);
+  if (indentation) {
+    const IndentationModulus m = lee_radok_modulus(indentation->force, indentation->depth,
+                                                   indentation->probe_radius, indentation->poisson_ratio);
+    out.payload["indentation"] = {{"force", indentation->force},
+                                  {"depth", indentation->depth},
+                                  {"probe_radius", indentation->probe_radius},
+                                  {"poisson_ratio", indentation->poisson_ratio},
+                                  {"shear_modulus", m.shear_modulus},
+                                  {"youngs_modulus", m.youngs_modulus},
+                                  {"scene_youngs_modulus", scene.youngs_modulus},
+                                  {"ratio_to_scene", m.youngs_modulus / scene.youngs_modulus}};
+  }
+  const int l = run.loaded_node_index;
+  std::ostringstream summary;
+  summary << run.nodes.size() << " nodes, " << run.forces.size() << " cases; node " << run.loaded_node_number
+          << " compliance (" << run.unit_solutions(3 * l, 0) << ", " << run.unit_solutions(3 * l + 1, 1) << ", "
+          << run.unit_solutions(3 * l + 2, 2) << ") m/N; " << run.timings.total_s << " s";
+  out.summary = summary.str();
+  return out;
+}
+
+RpimOutput run_stability(const io::JsonReader& cfg) {
+  const PlateScene scene = read_plate_scene(cfg.optional("plate"));
+  const RpimSettings settings = read_settings(cfg);
+  const io::JsonReader sweep = cfg.at("stability");
+  cfg.reject_unknown();
+  std::vector<std::pair<StabilityParameter, double>> runs;
+  for (const StabilityParameter parameter : kStabilityParameters) {
+    const std::string key = stability_parameter_name(parameter);
+    if (!sweep.has(key)) continue;
+    for (double v : sweep.get_doubles(key)) {
+      sweep.require(v > 0, key, "positive parameter values");
+      if (parameter == StabilityParameter::nearest_count)
+        sweep.require(v >= 1 && v <= 1000 && v == std::floor(v), key, "whole node counts between 1 and 1000");
+      runs.emplace_back(parameter, v);
+    }
+  }
+  sweep.reject_unknown();
+  if (runs.empty()) sweep.fail("at least one parameter list (q, alpha_c, d_c_spacing_factor, ...)");
+
+  nlohmann::json points = nlohmann::json::array();
+  int failures = 0;
+  for (const auto& [parameter, value] : runs) {
+    const StabilityPoint p = stability_point(scene, settings, parameter, value);
+    failures += p.ok ? 0 : 1;
+    points.push_back(stability_point_json(p, settings.max_moment_condition));
+  }
+  const double h = plate_mean_spacing(scene);
+  nlohmann::json payload = {
+      {"plate", plate_scene_json(scene)},
+      {"base", rpim_settings_json(settings, resolve_rbf(settings, h), resolve_support(settings, h), h)},
+      {"loaded_node", plate_loaded_node_number(scene)},
+      {"points", points}};
+  return {"rpim_stability", std::move(payload), std::nullopt,
+          std::to_string(runs.size()) + " settings, " + std::to_string(failures) + " numerical failures (recorded)"};
+}
+
+RpimOutput run_convergence(const io::JsonReader& cfg) {
+  const BlockStudy block = read_block_study(cfg.optional("block"));
+  const RpimSettings settings = read_settings(cfg);
+  std::vector<int> counts;
+  for (const auto n : cfg.get_ints("nodes_per_edge")) {
+    cfg.require(n >= 3 && n <= 41, "nodes_per_edge", "node counts per edge between 3 and 41");
+    counts.push_back(static_cast<int>(n));
+  }
+  cfg.require(!counts.empty(), "nodes_per_edge", "a non-empty list of node counts per edge");
+  cfg.reject_unknown();
+
+  const std::vector<ConvergencePoint> study = convergence_study(block, settings, counts);
+  nlohmann::json rows = nlohmann::json::array();
+  std::vector<double> h, rms, max;
+  for (const auto& p : study) {
+    rows.push_back({{"nodes_per_edge", p.nodes_per_edge},
+                    {"nodes", p.result.nodes},
+                    {"spacing", p.result.spacing},
+                    {"rms_error", p.result.rms_error},
+                    {"max_error", p.result.max_error},
+                    {"reference", p.result.reference},
+                    {"relative_rms_error", p.result.relative_rms()},
+                    {"relative_max_error", p.result.relative_max()}});
+    h.push_back(p.result.spacing);
+    rms.push_back(p.result.rms_error);
+    max.push_back(p.result.max_error);
+  }
+  const double edge_h = block.edge / (counts.front() - 1);
+  nlohmann::json payload = {
+      {"block",
+       {{"field", block.field == ManufacturedField::plane_wave ? "plane_wave" : "linear_patch"},
+        {"edge", block.edge},
+        {"youngs_modulus", block.youngs_modulus},
+        {"poisson_ratio", block.poisson_ratio},
+        {"gauss_order", block.gauss_order},
+        {"boundary", "every boundary node held at the exact displacement by penalty"}}},
+      {"model", rpim_settings_json(settings, resolve_rbf(settings, edge_h), resolve_support(settings, edge_h), edge_h)},
+      {"rows", rows},
+      {"observed_rate", {{"rms", observed_rate(h, rms)}, {"max", observed_rate(h, max)}}}};
+  payload["model"]["note"] = "spacing-relative lengths resolved with the first refinement's spacing";
+  std::ostringstream summary;
+  summary << "observed rate (rms) " << observed_rate(h, rms);
+  return {"rpim_convergence", std::move(payload), std::nullopt, summary.str()};
+}
+
+}  // namespace
+
+RpimOutput run_rpim_mode(const std::string& mode, const io::JsonReader& config) {
+  if (mode == "stability") return run_stability(config);
+  if (mode == "convergence") return run_convergence(config);
+  if (mode == "dataset") return run_dataset(config);
+  throw InputError("unknown rpim_precompute mode \"" + mode + "\": expected dataset, stability or convergence");
+}
+
+}  // namespace softsim::meshless
