@@ -1,6 +1,6 @@
 # cmake --install: headers under include/softsim/, the static libraries, the executables, and
 # the package softsim (lib/cmake/softsim/) whose targets are softsim::core, softsim::fe,
-# softsim::meshless, softsim::fit, softsim::multirate, softsim::meshing (surface meshing
+# softsim::meshless, softsim::fit, softsim::multirate, softsim::haptic, softsim::meshing (surface meshing
 # through libgmsh) and softsim::softsim (all of them but meshing).
 include(CMakePackageConfigHelpers)
 

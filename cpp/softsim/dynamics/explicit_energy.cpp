@@ -8,8 +8,13 @@ namespace softsim::dynamics {
 
 using detail::parallel;
 
-double ExplicitSolver::external_work() const {
-  double w = probe_work_;
+double ExplicitSolver::external_work(const double* u_mid) const {
+  double w = probe_work_ + applied_work_;
+  for (std::size_t a = 0; a < applied_.size(); ++a)
+    for (int k = 0; k < 3; ++k) {
+      const int q = 3 * applied_[a].node + k;
+      if (!constrained_[q]) w += applied_[a].force[k] * (u_mid[q] - applied_from_[3 * a + k]);
+    }
   for (double x : dof_work_) w += x;
   for (double x : load_work_) w += x;
   return w;
@@ -51,7 +56,7 @@ EnergySample ExplicitSolver::sample_energy(int n_done, const double* u_before, c
   strain += elements_.nodal_volumetric_energy(slot_volume_ratio_.data());
   s.kinetic = kinetic;
   s.strain = strain;
-  s.external_work = external_work() + gravity_work;
+  s.external_work = external_work(u_mid) + gravity_work;
   return s;
 }
 

@@ -4,7 +4,7 @@ namespace softsim::dynamics {
 
 // Gather (into f, the internal force on node i) and central-difference update (000 eq. 33) of
 // node i; `check` turns NaN as soon as a value is not finite.
-template <bool kGravity>
+template <bool kGravity, bool kApplied>
 inline void ExplicitSolver::update_node(int i, const double* up, const double* uc, double* un, double& check,
                                         double f[3]) const {
   elements_.gather(i, f);
@@ -18,6 +18,11 @@ inline void ExplicitSolver::update_node(int i, const double* up, const double* u
     y += am * scene_.gravity.y();
     z += am * scene_.gravity.z();
   }
+  if (kApplied) {  // + A F as a nodal load enters; constrained components are overwritten later
+    x += a * applied_force_[3 * i];
+    y += a * applied_force_[3 * i + 1];
+    z += a * applied_force_[3 * i + 2];
+  }
   un[3 * i] = x;
   un[3 * i + 1] = y;
   un[3 * i + 2] = z;
@@ -25,24 +30,30 @@ inline void ExplicitSolver::update_node(int i, const double* up, const double* u
 }
 
 // Nodes list[begin, split) are plain, list[split, end) special.
-template <bool kGravity>
+template <bool kGravity, bool kApplied>
 void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
                                   const double* uc, double* un, double& check) {
   for (int k = begin; k < split; ++k) {
     double f[3];
-    update_node<kGravity>(list[k], up, uc, un, check, f);
+    update_node<kGravity, kApplied>(list[k], up, uc, un, check, f);
   }
   for (int k = split; k < end; ++k) {
     double f[3];
-    update_node<kGravity>(list[k], up, uc, un, check, f);
+    update_node<kGravity, kApplied>(list[k], up, uc, un, check, f);
     update_special(list[k], step, f, up, uc, un);
   }
 }
 
 void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
                                   const double* uc, double* un, double& check) {
-  if (gravity_) update_nodes<true>(list, begin, split, end, step, up, uc, un, check);
-  else update_nodes<false>(list, begin, split, end, step, up, uc, un, check);
+  const bool applied = !applied_.empty();
+  if (gravity_) {
+    if (applied) update_nodes<true, true>(list, begin, split, end, step, up, uc, un, check);
+    else update_nodes<true, false>(list, begin, split, end, step, up, uc, un, check);
+  } else {
+    if (applied) update_nodes<false, true>(list, begin, split, end, step, up, uc, un, check);
+    else update_nodes<false, false>(list, begin, split, end, step, up, uc, un, check);
+  }
 }
 
 // Loads, probe, constraints, work booking and trajectory samples of node i, after its update;

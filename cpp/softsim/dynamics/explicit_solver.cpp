@@ -75,6 +75,7 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
 
   dofs_ = resolve_constraints(scene_, n_);
   const std::vector<char> mask = constrained_mask(dofs_, n_);
+  constrained_ = mask;
   moving_.assign(scene_.constraints.size(), 0);  // set by start()
   for (std::size_t l = 0; l < scene_.loads.size(); ++l)
     for (int node : scene_.loads[l].nodes) {
@@ -133,6 +134,11 @@ void ExplicitSolver::start() {
   load_work_.assign(loads_.size(), 0.0);
   probe_work_ = 0;
   probe_previous_.setZero();
+  for (const auto& a : applied_)
+    for (int k = 0; k < 3; ++k) applied_force_[3 * a.node + k] = 0.0;
+  applied_.clear();
+  applied_from_.clear();
+  applied_work_ = 0;
   n_done_ = 0;
   energies_.clear();
   initial_energy_ = initial_bound_ = 0;
@@ -404,6 +410,32 @@ void ExplicitSolver::set_probe_tip(const Eigen::Vector3d& tip_displacement) {
   if (!started_) start();
   scene_.probe.displacement = tip_displacement;
   scene_.probe.ramp.duration = 0;
+}
+
+void ExplicitSolver::set_applied_forces(const std::vector<AppliedForce>& forces) {
+  for (const auto& a : forces) {
+    if (a.node < 0 || a.node >= n_) throw InputError("applied force: node " + std::to_string(a.node) + " out of range");
+    if (!a.force.allFinite()) throw InputError("applied force on node " + std::to_string(a.node) + " is not finite");
+  }
+  if (!started_) start();
+  // The work of the set that stops acting now: after n steps it has acted up to u_{n−1}; the
+  // force of step n − 1 moves u_{n−1} to u_n, so book up to u_n (the current state).
+  const double* u = displacement();
+  for (std::size_t a = 0; a < applied_.size(); ++a)
+    for (int k = 0; k < 3; ++k) {
+      const int q = 3 * applied_[a].node + k;
+      if (!constrained_[q]) applied_work_ += applied_[a].force[k] * (u[q] - applied_from_[3 * a + k]);
+      applied_force_[q] = 0.0;
+    }
+  if (applied_force_.empty()) applied_force_.assign(3 * n_, 0.0);
+  applied_ = forces;
+  applied_from_.resize(3 * forces.size());
+  for (std::size_t a = 0; a < forces.size(); ++a)
+    for (int k = 0; k < 3; ++k) {
+      const int q = 3 * forces[a].node + k;
+      applied_force_[q] += forces[a].force[k];
+      applied_from_[3 * a + k] = u[q];
+    }
 }
 
 ExplicitTiming ExplicitSolver::timing() const {

@@ -81,6 +81,13 @@ struct ExplicitResult {
   ExplicitTiming timing;
 };
 
+// A force on one node, held from one advance() to the next (a tool's contact force spread over
+// the nodes it touches, 001 §3's haptic input).
+struct AppliedForce {
+  int node = 0;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N
+};
+
 using SnapshotFn = std::function<void(int step, double time, const std::vector<double>& u,
                                       const std::vector<double>& v)>;
 // Called between chunks of steps (at most `energy_interval` steps apart) with the steps done so
@@ -142,6 +149,10 @@ class ExplicitSolver {
   void set_prescribed_displacement(int c, const Eigen::Vector3d& value);
   // Between steps: the probe's tip sits at X_node + `tip_displacement` from the next step on.
   void set_probe_tip(const Eigen::Vector3d& tip_displacement);
+  // Between steps: these forces act (on the components no constraint holds) from the next step
+  // until the next call, replacing the previous set; any node, no set-up per node. Their work
+  // F · Δu is booked exactly (the force is constant between calls). An empty set removes them.
+  void set_applied_forces(const std::vector<AppliedForce>& forces);
 
  private:
   struct LoadEntry {
@@ -161,9 +172,9 @@ class ExplicitSolver {
   void build_schedule();
   void start();
   void sample(const SnapshotFn& snapshot);
-  template <bool kGravity>
+  template <bool kGravity, bool kApplied>
   void update_node(int i, const double* up, const double* uc, double* un, double& check, double f[3]) const;
-  template <bool kGravity>
+  template <bool kGravity, bool kApplied>
   void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
                     double* un, double& check);
   void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
@@ -171,7 +182,7 @@ class ExplicitSolver {
   void update_special(int i, int step, const double f[3], const double* up, const double* uc, double* un);
   EnergySample sample_energy(int n_done, const double* u_before, const double* u_mid, const double* u_after,
                              double& bound_kinetic, double& min_j, int& min_j_element);
-  double external_work() const;
+  double external_work(const double* u_mid) const;
   [[noreturn]] void fail_inversion(int step, double J, int element) const;
 
   fem::ElementSet& elements_;
@@ -201,6 +212,13 @@ class ExplicitSolver {
   double probe_work_ = 0;
   std::array<bool, 3> probe_free_ = {true, true, true};
   Eigen::Vector3d probe_previous_ = Eigen::Vector3d::Zero();
+  // Applied forces (set_applied_forces): F per dof, dense so the node update reads it
+  // without a search; the nodes in use; the state their work is booked from.
+  std::vector<double> applied_force_;
+  std::vector<AppliedForce> applied_;
+  std::vector<double> applied_from_;  // u (3 per applied node) when the set began to act
+  double applied_work_ = 0;           // booked by the sets before the current one
+  std::vector<char> constrained_;     // per dof
   std::vector<double> u0_, v0_;
   double energy_floor_ = 0;  // energies below it are round-off (growth check)
 

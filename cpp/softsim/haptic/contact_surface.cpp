@@ -1,0 +1,118 @@
+#include "softsim/haptic/contact_surface.hpp"
+
+#include <limits>
+
+#include "softsim/io/errors.hpp"
+
+namespace softsim::haptic {
+
+namespace {
+
+// Barycentric weights of the point of triangle (a, b, c) closest to p (Ericson, Real-Time
+// Collision Detection §5.1.5: Voronoi regions of vertices, edges and face).
+Eigen::Vector3d closest_weights(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return {1 - v - w, v, w};
+}
+
+}  // namespace
+
+ContactSurface::ContactSurface(const mesh::TetMesh& mesh) : mesh_(mesh), triangles_(mesh.boundary) {
+  if (triangles_.empty()) throw InputError("contact surface: the mesh has no boundary triangles");
+  const int n = mesh.num_nodes();
+  node_triangle_begin_.assign(n + 1, 0);
+  for (const auto& t : triangles_)
+    for (int v : t) ++node_triangle_begin_[v + 1];
+  for (int i = 0; i < n; ++i) node_triangle_begin_[i + 1] += node_triangle_begin_[i];
+  node_triangles_.resize(node_triangle_begin_[n]);
+  std::vector<int> fill(node_triangle_begin_.begin(), node_triangle_begin_.end() - 1);
+  for (int t = 0; t < num_triangles(); ++t)
+    for (int v : triangles_[t]) node_triangles_[fill[v]++] = t;
+}
+
+Eigen::Vector3d ContactSurface::deformed(int node, const double* u) const {
+  return mesh_.nodes[node] + Eigen::Vector3d(u[3 * node], u[3 * node + 1], u[3 * node + 2]);
+}
+
+SurfacePoint ContactSurface::at(int triangle, const Eigen::Vector3d& weights, const double* u) const {
+  SurfacePoint s;
+  s.triangle = triangle;
+  s.nodes = triangles_[triangle];
+  s.weights = weights;
+  const Eigen::Vector3d a = deformed(s.nodes[0], u), b = deformed(s.nodes[1], u), c = deformed(s.nodes[2], u);
+  s.position = weights[0] * a + weights[1] * b + weights[2] * c;
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const double len = n.norm();
+  s.normal = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+  return s;
+}
+
+SurfacePoint ContactSurface::closest_on(int triangle, const Eigen::Vector3d& x, const double* u) const {
+  const auto& t = triangles_[triangle];
+  return at(triangle, closest_weights(x, deformed(t[0], u), deformed(t[1], u), deformed(t[2], u)), u);
+}
+
+SurfacePoint ContactSurface::closest(const Eigen::Vector3d& x, const double* u) const {
+  SurfacePoint best;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int t = 0; t < num_triangles(); ++t) {
+    const SurfacePoint s = closest_on(t, x, u);
+    const double d = (s.position - x).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = s;
+    }
+  }
+  return best;
+}
+
+SurfacePoint ContactSurface::closest_near(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
+                                          int max_walk) const {
+  SurfacePoint best = closest_on(from.triangle, x, u);
+  double best_d = (best.position - x).squaredNorm();
+  for (int move = 0; move < max_walk; ++move) {
+    const int current = best.triangle;
+    for (int v : triangles_[current])
+      for (int k = node_triangle_begin_[v]; k < node_triangle_begin_[v + 1]; ++k) {
+        const int t = node_triangles_[k];
+        if (t == current) continue;
+        const SurfacePoint s = closest_on(t, x, u);
+        const double d = (s.position - x).squaredNorm();
+        // Strictly closer, so an edge or vertex shared by two triangles keeps its triangle.
+        if (d < best_d * (1 - 1e-12)) {
+          best_d = d;
+          best = s;
+        }
+      }
+    if (best.triangle == current) break;
+  }
+  return best;
+}
+
+}  // namespace softsim::haptic

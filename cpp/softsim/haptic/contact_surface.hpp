@@ -1,0 +1,52 @@
+#pragma once
+// Where the probe touches the organ: a point of the boundary surface, held as a triangle and
+// barycentric weights, so the spring force spreads over the triangle's three nodes (w_a f on
+// node a). As the probe slides, the point follows the closest point of the deformed surface to
+// the probe tip, found by a local walk over neighbouring triangles. The weights change
+// continuously, also across an edge or a vertex (both triangles give the same weights there),
+// so the force has no jump when the contact passes from one node to the next; a contact held
+// on the nearest node (001's collision step) would jump by the spring's whole force.
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "softsim/mesh/tet_mesh.hpp"
+
+namespace softsim::haptic {
+
+struct SurfacePoint {
+  int triangle = -1;                             // index into the mesh's boundary
+  std::array<int, 3> nodes{};                    // its nodes
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // barycentric, summing to 1
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // Σ w_a x_a in the deformed state (m)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();    // outward unit normal of the deformed triangle
+};
+
+class ContactSurface {
+ public:
+  // The boundary triangles of `mesh` (outward oriented) and which triangles meet at each node.
+  // InputError when the mesh has no boundary.
+  explicit ContactSurface(const mesh::TetMesh& mesh);
+
+  int num_triangles() const { return static_cast<int>(triangles_.size()); }
+  // The closest point of the deformed surface (u: 3 per node) to `x`, over every triangle:
+  // where a contact starts.
+  SurfacePoint closest(const Eigen::Vector3d& x, const double* u) const;
+  // The closest point near `from`: a walk from its triangle over the triangles sharing a node,
+  // while a closer one is found (at most `max_walk` moves). Cost independent of the mesh size.
+  SurfacePoint closest_near(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
+                            int max_walk = 64) const;
+  // The point of `triangle` with barycentric `weights`, in the deformed state.
+  SurfacePoint at(int triangle, const Eigen::Vector3d& weights, const double* u) const;
+
+ private:
+  SurfacePoint closest_on(int triangle, const Eigen::Vector3d& x, const double* u) const;
+  Eigen::Vector3d deformed(int node, const double* u) const;
+
+  const mesh::TetMesh& mesh_;
+  std::vector<std::array<int, 3>> triangles_;
+  std::vector<int> node_triangle_begin_, node_triangles_;  // CSR: triangles at each node
+};
+
+}  // namespace softsim::haptic

@@ -1,0 +1,100 @@
+#include "softsim/haptic/haptic_config.hpp"
+
+#include <cmath>
+
+#include "softsim/io/errors.hpp"
+
+namespace softsim::haptic {
+
+namespace {
+
+Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key) {
+  const auto v = r.get_doubles(key, 3);
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+Eigen::Vector3d read_unit(const io::JsonReader& r, const std::string& key) {
+  const Eigen::Vector3d v = read_vec3(r, key);
+  r.require(v.norm() > 0, key, "a non-zero direction [x, y, z]");
+  return v.normalized();
+}
+
+void read_input(const io::JsonReader& in, const mesh::TetMesh& mesh, HapticConfig& c) {
+  ProbePath& p = c.input;
+  const std::string kind = in.get_choice("kind", {"press", "slide", "growing_sine", "chirp", "recorded"});
+  if (kind == "recorded") {
+    p.kind = ProbePath::Kind::recorded;
+    c.recorded_path = in.get_string("path");
+    in.reject_unknown();
+    p.recorded = read_recorded_path(c.recorded_path);
+    return;
+  }
+  // The tip starts on the surface point nearest to "start", moving along "direction".
+  const ContactSurface surface(mesh);
+  const std::vector<double> rest(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
+  p.origin = surface.closest(read_vec3(in, "start"), rest.data()).position;
+  p.direction = read_unit(in, "direction");
+  auto& s = p.signal;
+  if (kind == "press" || kind == "slide") {
+    p.kind = kind == "press" ? ProbePath::Kind::press : ProbePath::Kind::slide;
+    s.kind = multirate::ProbeSignal::Kind::kRampHold;
+    s.amplitude = in.get_positive("depth");
+    s.ramp_time = in.get_positive("ramp_time");
+    s.start_time = 0;
+    if (kind == "slide") {
+      p.slide_direction = read_unit(in, "slide_direction");
+      p.slide_speed = in.get_positive("speed");
+    }
+  } else if (kind == "growing_sine") {  // 001 Fig. 8
+    p.kind = ProbePath::Kind::growing_sine;
+    s.kind = multirate::ProbeSignal::Kind::kGrowingSine;
+    s.amplitude = in.get_positive("amplitude");
+    s.start_frequency = in.get_positive("frequency");
+    s.sweep_time = in.get_positive("growth_time");
+  } else {  // chirp, 001 Fig. 6
+    p.kind = ProbePath::Kind::chirp;
+    s.kind = multirate::ProbeSignal::Kind::kChirp;
+    s.amplitude = in.get_positive("amplitude");
+    s.start_frequency = in.get_double("start_frequency", 0.0);
+    in.require(s.start_frequency >= 0, "start_frequency", "a frequency >= 0 Hz");
+    s.end_frequency = in.get_positive("end_frequency");
+    s.sweep_time = in.get_positive("sweep_time");
+  }
+  in.reject_unknown();
+}
+
+void read_realtime(const io::JsonReader& r, RealtimeConfig& rt) {
+  const std::string source = r.get_choice("source", {"stdin", "udp"});
+  rt.source = source == "udp" ? RealtimeConfig::Source::udp : RealtimeConfig::Source::stdin_lines;
+  rt.port = r.get_int32("port", 0);
+  r.require(rt.port >= 0 && rt.port <= 65535, "port", "a port number in [0, 65535] (0: any free port)");
+  rt.max_frames = r.get_int("max_frames", 0);
+  r.require(rt.max_frames >= 0, "max_frames", "a frame count >= 0 (0: until the input ends)");
+  rt.idle_timeout = r.get_positive("idle_timeout", rt.idle_timeout);
+  r.reject_unknown();
+}
+
+}  // namespace
+
+std::string read_haptic_mesh_path(const io::JsonReader& config) { return hybrid::read_mesh_path(config.at("model")); }
+
+HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) {
+  HapticConfig c;
+  c.model = hybrid::read_dhd_config(cfg.at("model"), mesh);
+  if (c.model.static_solver) cfg.at("model").at("solver").fail("an explicit solver (\"kind\": \"explicit\"): a haptic scene steps in time");
+  if (c.model.scene.has_probe) cfg.at("model").at("boundary").at("probe").fail("no probe: the haptic scene's probe is the top-level \"probe\"");
+  const double rate = cfg.get_positive("frame_rate", 1000.0);
+  c.options.frame_step = 1.0 / rate;
+  const io::JsonReader probe = cfg.at("probe");
+  c.options.probe_stiffness = probe.get_positive("stiffness");
+  c.options.contact = probe.get_choice("contact", {"grasp", "push"}, "grasp") == "push" ? ContactMode::push : ContactMode::grasp;
+  probe.reject_unknown();
+  read_input(cfg.at("input"), mesh, c);
+  c.frames = cfg.get_int("frames", c.frames);
+  cfg.require(c.frames >= 1 && c.frames <= 100000000, "frames", "a frame count in [1, 10^8]");
+  if (const auto rt = cfg.optional("realtime")) read_realtime(*rt, c.realtime);
+  cfg.reject_unknown();
+  return c;
+}
+
+}  // namespace softsim::haptic

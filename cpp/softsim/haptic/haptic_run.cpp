@@ -1,0 +1,93 @@
+#include "softsim/haptic/haptic_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace softsim::haptic {
+
+void HapticRecord::reserve(long n) {
+  time.reserve(n);
+  probe.reserve(n);
+  force.reserve(n);
+  contact.reserve(n);
+  compute_seconds.reserve(n);
+}
+
+void HapticRecord::push(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& f, bool in_contact,
+                        double seconds) {
+  time.push_back(t);
+  probe.push_back(p);
+  force.push_back(f);
+  contact.push_back(in_contact ? 1 : 0);
+  compute_seconds.push_back(seconds);
+  ++frames;
+}
+
+FrameTimeSummary summarize_frame_times(const std::vector<double>& seconds, double frame_step) {
+  FrameTimeSummary s;
+  s.frames = static_cast<long>(seconds.size());
+  if (seconds.empty()) return s;
+  std::vector<double> sorted = seconds;
+  std::sort(sorted.begin(), sorted.end());
+  auto quantile = [&](double q) { return sorted[static_cast<std::size_t>(q * (sorted.size() - 1) + 0.5)]; };
+  s.p50 = quantile(0.5);
+  s.p99 = quantile(0.99);
+  s.max = sorted.back();
+  s.deadline_misses = static_cast<long>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), frame_step));
+  return s;
+}
+
+HapticRecord run_haptic(HapticScene& scene, const ProbePath& path, long frames) {
+  using Clock = std::chrono::steady_clock;
+  HapticRecord r;
+  r.reserve(frames);
+  const double h = scene.options().frame_step;
+  for (long k = 0; k < frames; ++k) {
+    // The tip position of frame k is read at its start (001 §3, step 1).
+    const Eigen::Vector3d p = path.at(k * h);
+    const auto t0 = Clock::now();
+    const Eigen::Vector3d f = scene.frame(p);
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    r.push((k + 1) * h, p, f, scene.in_contact(), seconds);
+  }
+  return r;
+}
+
+namespace {
+
+nlohmann::json rows(const std::vector<Eigen::Vector3d>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& x : v) a.push_back({x.x(), x.y(), x.z()});
+  return a;
+}
+
+}  // namespace
+
+nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& scene, const HapticRecord& record,
+                              const std::string& mode) {
+  const FrameTimeSummary ft = summarize_frame_times(record.compute_seconds, scene.options().frame_step);
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& e : scene.events()) events.push_back({{"frame", e.frame}, {"message", e.message}});
+  std::vector<int> contact(record.contact.begin(), record.contact.end());
+  return {
+      {"mode", mode},
+      {"solver", "whole_model"},
+      {"model", {{"material", config.model.model}, {"nodes", scene.model().num_nodes()},
+                 {"tets", scene.model().mesh().num_tets()}}},
+      {"frame_step", scene.options().frame_step},
+      {"substeps", scene.substeps()},
+      {"dt", scene.dt()},
+      {"probe_stiffness", scene.options().probe_stiffness},
+      {"contact_mode", scene.options().contact == ContactMode::push ? "push" : "grasp"},
+      {"frames", record.frames},
+      {"time", record.time},
+      {"probe", rows(record.probe)},
+      {"force", rows(record.force)},
+      {"contact", contact},
+      {"events", events},
+      {"timing", {{"frame_seconds_p50", ft.p50}, {"frame_seconds_p99", ft.p99}, {"frame_seconds_max", ft.max},
+                  {"deadline_misses", ft.deadline_misses}, {"threads", config.model.threads}}},
+  };
+}
+
+}  // namespace softsim::haptic

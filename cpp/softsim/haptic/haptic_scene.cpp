@@ -1,0 +1,107 @@
+#include "softsim/haptic/haptic_scene.hpp"
+
+#include <cmath>
+
+#include "softsim/dynamics/stable_step.hpp"
+#include "softsim/io/errors.hpp"
+
+namespace softsim::haptic {
+
+FrameSubsteps frame_substeps(double frame_step, double dt_limit) {
+  if (!(frame_step > 0) || !(dt_limit > 0)) throw InputError("haptic: frame step and step limit must be positive");
+  const double n = std::ceil(frame_step / dt_limit * (1 - 1e-12));
+  if (n > 1e7) throw InputError("haptic: a frame needs more than 10^7 explicit substeps (frame step / critical step)");
+  FrameSubsteps s;
+  s.substeps = std::max(1, static_cast<int>(n));
+  s.dt = frame_step / s.substeps;
+  return s;
+}
+
+namespace {
+
+hybrid::DhdConfig with_frame_step(hybrid::DhdConfig c, const mesh::TetMesh& mesh, double frame_step) {
+  if (c.static_solver) throw InputError("haptic: the model's solver must be explicit (solver.kind \"explicit\")");
+  double limit = 0;
+  if (c.explicit_solver.dt) {
+    limit = *c.explicit_solver.dt;
+  } else {
+    const auto critical = dynamics::critical_time_step(mesh, c.material.elastic);
+    limit = dynamics::choose_time_step(critical, std::nullopt, c.explicit_solver.safety_factor, false).dt;
+  }
+  c.explicit_solver.dt = frame_substeps(frame_step, limit).dt;
+  return c;
+}
+
+}  // namespace
+
+HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdConfig model,
+                         const HapticOptions& options)
+    : mesh_(mesh), options_(options), surface_(*mesh) {
+  if (!(options.frame_step > 0)) throw InputError("haptic: frame step must be positive");
+  if (!(options.probe_stiffness > 0)) throw InputError("haptic: probe stiffness must be positive");
+  hybrid::DhdConfig c = with_frame_step(std::move(model), *mesh, options.frame_step);
+  substeps_ = frame_substeps(options.frame_step, *c.explicit_solver.dt).substeps;
+  model_ = std::make_unique<hybrid::DhdScene>(mesh, std::move(c));
+  applied_.resize(3);
+  reset();
+}
+
+void HapticScene::reset() {
+  model_->reset();
+  in_contact_ = false;
+  contact_ = SurfacePoint();
+  frames_ = 0;
+  events_.clear();
+}
+
+void HapticScene::update_contact(const Eigen::Vector3d& probe, const double* u) {
+  if (in_contact_) {
+    contact_ = surface_.closest_near(probe, u, contact_);
+    return;
+  }
+  const SurfacePoint s = surface_.closest(probe, u);
+  // Grasp: the first frame takes hold; push: only a tip at or below the surface touches it.
+  if (options_.contact == ContactMode::grasp || (probe - s.position).dot(s.normal) <= 0) {
+    in_contact_ = true;
+    contact_ = s;
+  }
+}
+
+Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
+  ++frames_;
+  if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
+  const double k = options_.probe_stiffness;
+  try {
+    update_contact(probe, model_->displacement());
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();  // on the tissue
+    if (in_contact_) {
+      f = k * (probe - contact_.position);
+      // A pushing tool cannot pull: the contact ends when the spring would draw the surface out.
+      if (options_.contact == ContactMode::push && f.dot(contact_.normal) > 0) {
+        in_contact_ = false;
+        f.setZero();
+      }
+    }
+    if (in_contact_) {
+      for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
+      model_->solver().set_applied_forces(applied_);
+    } else {
+      model_->solver().set_applied_forces({});
+    }
+    model_->step(substeps_);
+    if (!in_contact_) return Eigen::Vector3d::Zero();
+    contact_ = surface_.at(contact_.triangle, contact_.weights, model_->displacement());
+    return -k * (probe - contact_.position);
+  } catch (const NumericalError& e) {
+    // Keep answering the device: report, return the model to rest, and start the contact anew.
+    events_.push_back({frames_ - 1, e.what()});
+    const long frames = frames_;
+    const auto events = std::move(events_);
+    reset();
+    frames_ = frames;
+    events_ = events;
+    return Eigen::Vector3d::Zero();
+  }
+}
+
+}  // namespace softsim::haptic

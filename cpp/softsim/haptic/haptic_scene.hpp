@@ -1,0 +1,86 @@
+#pragma once
+// The haptic scene (001 §3 in 3-D): a tool tip moved by the user pulls a point of the organ's
+// surface through a spring, and the spring's force is both the model's input and the force
+// sent back to the device, once per haptic frame (1 kHz):
+//   1. the tip position p arrives; the contact point x_c follows the closest point of the
+//      deformed surface (contact_surface.hpp),
+//   2. f = k (p − x_c) acts on the contact triangle's nodes (w_a f), held over the frame,
+//   3. the model advances one frame: as many explicit substeps as the critical step requires
+//      (000 eqs. 34–35), all nodes every substep (the whole model),
+//   4. the device receives the force on the tool, −k (p − x_c⁺), at the updated state.
+// The model is a dhd_sim scene (hybrid::DhdScene, the same engine and config). A live scene never
+// stops: a numerical failure is reported as an event, the model goes back to rest, and the
+// frames go on.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "softsim/haptic/contact_surface.hpp"
+#include "softsim/hybrid/dhd_scene.hpp"
+
+namespace softsim::haptic {
+
+enum class ContactMode {
+  grasp,  // the tip holds the surface point it first touches (forceps): pulls as well as pushes
+  push,   // unilateral: contact starts when the tip is below the surface, ends when it would pull
+};
+
+struct HapticOptions {
+  double frame_step = 1e-3;       // s (1 kHz)
+  double probe_stiffness = 100;   // k (N/m)
+  ContactMode contact = ContactMode::grasp;
+};
+
+struct FrameEvent {
+  long frame = 0;
+  std::string message;  // the numerical failure the model recovered from
+};
+
+class HapticScene {
+ public:
+  // The model's explicit step is the configured one (or safety × Δt_cr) shortened so that a whole
+  // number of substeps fills a frame. InputError for a static model config or bad options.
+  HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdConfig model, const HapticOptions& options);
+
+  // One haptic frame with the tip at `probe` (m, world): returns the force on the tool (N).
+  Eigen::Vector3d frame(const Eigen::Vector3d& probe);
+  // Back to rest, no contact, frame 0.
+  void reset();
+
+  const HapticOptions& options() const { return options_; }
+  int substeps() const { return substeps_; }
+  double dt() const { return model_->dt(); }
+  long frames_done() const { return frames_; }
+  bool in_contact() const { return in_contact_; }
+  const SurfacePoint& contact() const { return contact_; }
+  const std::vector<FrameEvent>& events() const { return events_; }
+  hybrid::DhdScene& model() { return *model_; }
+  const hybrid::DhdScene& model() const { return *model_; }
+  const ContactSurface& surface() const { return surface_; }
+
+ private:
+  void update_contact(const Eigen::Vector3d& probe, const double* u);
+
+  std::shared_ptr<const mesh::TetMesh> mesh_;
+  HapticOptions options_;
+  int substeps_ = 1;
+  std::unique_ptr<hybrid::DhdScene> model_;
+  ContactSurface surface_;
+  bool in_contact_ = false;
+  SurfacePoint contact_;
+  long frames_ = 0;
+  std::vector<FrameEvent> events_;
+  std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
+};
+
+// The explicit step and substep count of a frame: the largest step ≤ `dt_limit` that divides
+// `frame_step` into whole substeps.
+struct FrameSubsteps {
+  int substeps = 1;
+  double dt = 0;
+};
+FrameSubsteps frame_substeps(double frame_step, double dt_limit);
+
+}  // namespace softsim::haptic

@@ -1,0 +1,201 @@
+// The haptic scene (001 §3 in 3-D on the dhd_sim engine): applied forces enter the explicit
+// update exactly as nodal loads do; a probe pressed and held settles on the static solution of
+// the same spring; sliding over the surface carries the contact across triangles without a
+// force jump; a failure far past inversion is reported and the frames go on; recorded inputs are
+// read strictly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "softsim/dynamics/lumped_mass.hpp"
+#include "softsim/dynamics/static_solver.hpp"
+#include "softsim/haptic/haptic_config.hpp"
+#include "softsim/haptic/haptic_run.hpp"
+#include "softsim/haptic/haptic_scene.hpp"
+#include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/io/errors.hpp"
+
+#include "support/scenes.hpp"
+
+using namespace softsim;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A 8 x 8 x 4-cell block, 10 x 10 x 5 cm, bottom fixed; TLED, E = 5 kPa (000 §3.1), damped.
+struct Block {
+  std::shared_ptr<const mesh::TetMesh> mesh =
+      std::make_shared<const mesh::TetMesh>(test_scenes::cuboid(8, 8, 4, 0.1, 0.1, 0.05));
+  hybrid::DhdConfig config(double damping) const {
+    const nlohmann::json j = {{"mesh", "unused"},
+                              {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                              {"damping", {{"alpha", damping}}},
+                              {"boundary", {{"fixed", {{{"set", "bottom"}}}}}},
+                              {"solver", {{"kind", "explicit"}}}};
+    return hybrid::read_dhd_config(io::JsonReader(j, "block.json"), *mesh);
+  }
+};
+
+int node_at(const mesh::TetMesh& m, const Eigen::Vector3d& x) {
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if ((m.nodes[i] - x).norm() < 1e-12) return i;
+  return -1;
+}
+
+}  // namespace
+
+TEST(AppliedForces, EnterTheUpdateExactlyAsANodalLoad) {
+  // The same force on one node, once as a scene load acting from step 1 (a ramp of half a step)
+  // and once applied between steps after step 0: the same displacements, bit for bit.
+  Block b;
+  const auto mat = fem::Material::make(test_scenes::kPaper, material::NeoHookeanForm::paper);
+  const std::vector<fem::ElementKind> kinds(b.mesh->num_tets(), fem::ElementKind::tled);
+  const int node = node_at(*b.mesh, {0.05, 0.05, 0.05});
+  ASSERT_GE(node, 0);
+  const Eigen::Vector3d force(0.01, -0.02, -0.05);
+  const double dt = 1e-4;
+  dynamics::ExplicitOptions opt;
+  opt.dt = dt;
+  opt.steps = 200;
+  opt.damping_alpha = 5;
+  dynamics::Scene with_load = b.config(0).scene;
+  dynamics::NodalLoad load;
+  load.name = "push";
+  load.nodes = {node};
+  load.force_per_node = force;
+  load.ramp.duration = 0.5 * dt;
+  with_load.loads.push_back(load);
+
+  fem::ElementSet set_a(*b.mesh, kinds, mat), set_b(*b.mesh, kinds, mat);
+  const auto masses = dynamics::lumped_mass(*b.mesh, 1000.0);
+  dynamics::ExplicitSolver a(set_a, masses, with_load, opt);
+  dynamics::ExplicitSolver c(set_b, masses, b.config(0).scene, opt);
+  a.reset();
+  c.reset();
+  a.advance(1);
+  c.advance(1);
+  c.set_applied_forces({{node, force}});
+  a.advance(199);
+  c.advance(199);
+  for (int q = 0; q < 3 * b.mesh->num_nodes(); ++q) ASSERT_EQ(a.displacement()[q], c.displacement()[q]) << q;
+  // The work of the applied force is booked: the energy balance closes as with the load.
+  EXPECT_NEAR(c.energies().back().external_work, a.energies().back().external_work,
+              1e-3 * std::abs(a.energies().back().external_work));
+  // An empty set removes the force; the node then moves freely (the state diverges from the load's).
+  c.set_applied_forces({});
+  a.advance(50);
+  c.advance(50);
+  EXPECT_NE(a.displacement()[3 * node + 2], c.displacement()[3 * node + 2]);
+}
+
+TEST(HapticScene, PressAndHoldSettlesOnTheStaticSpringSolution) {
+  // The tip pressed 8 mm straight down over a top node and held: with damping the frames settle
+  // where the static solver puts the same spring on that node.
+  Block b;
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = 100;
+  haptic::HapticScene scene(b.mesh, b.config(40), opt);
+  const int node = node_at(*b.mesh, {0.05, 0.05, 0.05});
+  const Eigen::Vector3d depth(0, 0, -0.008);
+  haptic::ProbePath path;
+  path.origin = b.mesh->nodes[node];
+  path.direction = -Eigen::Vector3d::UnitZ();
+  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
+  path.signal.amplitude = 0.008;
+  path.signal.ramp_time = 0.3;
+  const haptic::HapticRecord r = haptic::run_haptic(scene, path, 3000);
+  ASSERT_TRUE(scene.events().empty());
+  // The contact stayed on the node (the bottom of the dimple).
+  EXPECT_NEAR(scene.contact().weights.maxCoeff(), 1.0, 1e-9);
+
+  dynamics::Scene s = b.config(0).scene;
+  s.has_probe = true;
+  s.probe.node = node;
+  s.probe.stiffness = opt.probe_stiffness;
+  s.probe.displacement = depth;
+  const auto kinds = std::vector<fem::ElementKind>(b.mesh->num_tets(), fem::ElementKind::tled);
+  const auto st = dynamics::solve_static(*b.mesh, kinds, b.config(0).material, s, dynamics::StaticOptions());
+  // Force on the tool = −(spring force on the tissue).
+  const Eigen::Vector3d expected = -st.probe_force;
+  EXPECT_LT((r.force.back() - expected).norm(), 1e-4 * expected.norm()) << r.force.back().transpose() << " vs "
+                                                                          << expected.transpose();
+  EXPECT_GT(expected.z(), 0.1);  // the tool is pushed back up
+}
+
+TEST(HapticScene, SlidingCrossesTrianglesWithoutAForceJump) {
+  Block b;
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = 100;
+  haptic::HapticScene scene(b.mesh, b.config(40), opt);
+  haptic::ProbePath path;
+  path.kind = haptic::ProbePath::Kind::slide;
+  path.origin = Eigen::Vector3d(0.031, 0.052, 0.05);
+  path.direction = -Eigen::Vector3d::UnitZ();
+  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
+  path.signal.amplitude = 0.005;
+  path.signal.ramp_time = 0.2;
+  path.slide_direction = Eigen::Vector3d::UnitX();
+  path.slide_speed = 0.02;  // 2 cm/s: 3 cm (2.4 cells) in 1.5 s
+  std::vector<int> triangles;
+  haptic::HapticRecord r;
+  double largest_jump = 0, largest_force = 0;
+  Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+  for (long k = 0; k < 1700; ++k) {
+    const Eigen::Vector3d f = scene.frame(path.at(k * 1e-3));
+    if (triangles.empty() || triangles.back() != scene.contact().triangle) triangles.push_back(scene.contact().triangle);
+    if (k > 400) largest_jump = std::max(largest_jump, (f - previous).norm());
+    largest_force = std::max(largest_force, f.norm());
+    previous = f;
+  }
+  ASSERT_TRUE(scene.events().empty());
+  EXPECT_GE(triangles.size(), 5u);  // the contact crossed several edges
+  // Held at the nearest node instead, the force would jump by about k × (half a cell) = 0.6 N.
+  EXPECT_LT(largest_jump, 0.01 * largest_force) << largest_jump << " N of " << largest_force << " N";
+  // It followed the tip: the contact point sits near the tip's x.
+  EXPECT_NEAR(scene.contact().position.x(), path.at(1.699).x(), 0.003);
+}
+
+TEST(HapticScene, AFailurePastInversionIsReportedAndTheFramesGoOn) {
+  Block b;
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = 1e4;
+  haptic::HapticScene scene(b.mesh, b.config(10), opt);
+  haptic::ProbePath path;
+  path.origin = Eigen::Vector3d(0.05, 0.05, 0.05);
+  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
+  path.signal.amplitude = 0.2;  // four times the block's height
+  path.signal.ramp_time = 0.2;
+  const haptic::HapticRecord r = haptic::run_haptic(scene, path, 400);
+  EXPECT_EQ(r.frames, 400);
+  ASSERT_FALSE(scene.events().empty());
+  EXPECT_NE(scene.events().front().message.find("inverted"), std::string::npos) << scene.events().front().message;
+  for (const auto& f : r.force) EXPECT_TRUE(f.allFinite());
+}
+
+TEST(RecordedPath, ReadStrictlyAndInterpolated) {
+  const fs::path dir = fs::temp_directory_path() / "softsim_test_haptic";
+  fs::create_directories(dir);
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  };
+  const auto good = haptic::read_recorded_path(write("good.txt", "# t x y z\n0 0 0 0\n\n0.5 1 2 3 # mid\n1 1 2 5\n"));
+  EXPECT_EQ(good.at(0.25), Eigen::Vector3d(0.5, 1, 1.5));
+  EXPECT_EQ(good.at(2.0), Eigen::Vector3d(1, 2, 5));
+  auto expect_error = [&](const std::string& name, const std::string& text, const std::string& what) {
+    const std::string p = write(name, text);
+    try {
+      haptic::read_recorded_path(p);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(p + ":" + what), std::string::npos) << e.what();
+    }
+  };
+  expect_error("nan.txt", "0 0 0 0\n0.1 nan 0 0\n", "2: expected a finite number");
+  expect_error("back.txt", "0 0 0 0\n0.1 0 0 0\n0.1 0 0 1\n", "3: expected a time after");
+  expect_error("short.txt", "0 0 0\n", "1: expected 4 numbers");
+  expect_error("word.txt", "0 0 0 x\n", "1: expected a number");
+  fs::remove_all(dir);
+}
