@@ -22,9 +22,10 @@ import re
 import numpy as np
 
 from pipeline import plots
+from pipeline.element_kinds import (element_kind_names, element_kinds, kind_counts, kind_legend,  # noqa: F401
+                                    kind_names, small_strain_kinds)
 from pipeline.report_md import read_parts
 
-KIND_NAMES = {0: "linear", 1: "tled", 2: "corotational"}   # fem::ElementKind
 SECTION_DIR = "sections"
 
 
@@ -97,14 +98,18 @@ def boundary_owner(tets: np.ndarray, boundary: np.ndarray) -> np.ndarray:
     return np.array([owner[tuple(sorted(f))] for f in boundary], dtype=int)
 
 
-KIND_EDGE = {0: (0.15, 0.15, 0.15, 0.9), 1: (1.0, 1.0, 1.0, 0.9), 2: (0.2, 0.35, 0.9, 0.9)}
+# Triangle edge colour by element kind name: dark linear, blue corotational, light for the
+# nonlinear kinds (TLED, and any kind not named here, e.g. ANP).
+KIND_EDGE = {"linear": (0.15, 0.15, 0.15, 0.9), "corotational": (0.2, 0.35, 0.9, 0.9)}
+NONLINEAR_EDGE = (1.0, 1.0, 1.0, 0.9)
 
 
 def draw_deformed(ax, nodes, tets, boundary, u, kinds, vmax=None, view=(22, -58), scale_mm=True,
                   cmap="viridis", values=None, axis_labels=True):
     """The deformed boundary coloured by |u| (or by the nodal scalar `values`, e.g. the difference
     to TLED, in display units), triangle edges coloured by the kind of the element they belong to
-    (as in 000 Fig. 10: light edges nonlinear, dark edges linear)."""
+    (as in 000 Fig. 10: light edges nonlinear, dark edges linear). `kinds`: each element's kind
+    name (element_kind_names)."""
     from matplotlib import cm, colors
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -117,7 +122,10 @@ def draw_deformed(ax, nodes, tets, boundary, u, kinds, vmax=None, view=(22, -58)
     norm = colors.Normalize(0.0, vmax if vmax is not None else max(face_mag.max(), 1e-12))
     mapper = cm.ScalarMappable(norm=norm, cmap=cmap)
     faces = mapper.to_rgba(face_mag)
-    edges = [KIND_EDGE[int(kinds[o])] for o in owner]
+    kinds = np.asarray(kinds)
+    if kinds.dtype.kind != "U":
+        raise TypeError("draw_deformed: kinds must be element kind names (element_kind_names), not codes")
+    edges = [KIND_EDGE.get(str(kinds[o]), NONLINEAR_EDGE) for o in owner]
     coll = Poly3DCollection(x[tri], facecolors=faces, edgecolors=edges, linewidths=0.35)
     ax.add_collection3d(coll)
     lo, hi = (nodes * f).min(axis=0), (nodes * f).max(axis=0)
@@ -143,8 +151,8 @@ def draw_difference(ax, nodes, tets, boundary, u, kinds, values_mm, vmax, view=(
 
 
 def write_vtu(path, nodes, tets, u, kinds, extra_point_data=None):
-    """The reference mesh with point data "displacement" (m) and cell data "element_kind"
-    (0 linear, 1 tled, 2 corotational); ParaView's Warp By Vector shows the deformed shape."""
+    """The reference mesh with point data "displacement" (m) and cell data "element_kind" (the
+    codes of the artifact's element_kind_legend); ParaView's Warp By Vector shows the deformed shape."""
     import meshio
     point_data = {"displacement": np.asarray(u, dtype=float)}
     for k, v in (extra_point_data or {}).items():
@@ -297,48 +305,53 @@ def seconds_per_step(payload: dict) -> float:
     return 1.0 / steps_per_second(payload)
 
 
-def element_kinds(payload: dict) -> np.ndarray:
-    return np.asarray(payload["element_kind"], dtype=int)
-
-
-def describe_partition(partition: dict) -> dict:
+def describe_partition(partition: dict, small_strain=None) -> dict:
     """What a dhd_sim "partition" config asks for: strategy (uniform | layer | distance | strain
     | layers | tags | sphere), the requested share r of cheap elements (None when the strategy
-    does not state one) and the cheap kind (linear or corotational)."""
+    does not state one), the cheap kind (linear_element) and the nonlinear kind
+    (nonlinear_element). A uniform partition needs `small_strain`, the names of the small-strain
+    kinds (small_strain_kinds of the run's artifact), to tell whether its element is cheap."""
     p = partition or {}
     kind = p.get("kind", "linear_fraction" if "linear_fraction" in p else "uniform")
     cheap = p.get("linear_element", "linear")
+    nonlinear = p.get("nonlinear_element", "tled")
     if kind == "uniform":
+        if small_strain is None:
+            raise ValueError("describe_partition: a uniform partition needs the small-strain kinds of the legend")
         element = p.get("element", "tled")
-        return {"strategy": "uniform", "requested_r": 0.0 if element == "tled" else 1.0,
-                "cheap_kind": cheap if element == "tled" else element}
+        is_cheap = element in small_strain
+        return {"strategy": "uniform", "requested_r": 1.0 if is_cheap else 0.0,
+                "cheap_kind": element if is_cheap else cheap, "nonlinear_kind": nonlinear if is_cheap else element}
     if kind == "linear_fraction":
         strategy = "layer" if p.get("distance", "euclidean") == "depth" else "distance"
-        return {"strategy": strategy, "requested_r": float(p["linear_fraction"]), "cheap_kind": cheap}
+        return {"strategy": strategy, "requested_r": float(p["linear_fraction"]), "cheap_kind": cheap,
+                "nonlinear_kind": nonlinear}
     if kind == "strain":
         return {"strategy": "strain", "requested_r": float(p["linear_fraction"]) if "linear_fraction" in p
-                else None, "cheap_kind": cheap}
-    return {"strategy": kind, "requested_r": None, "cheap_kind": cheap}
+                else None, "cheap_kind": cheap, "nonlinear_kind": nonlinear}
+    return {"strategy": kind, "requested_r": None, "cheap_kind": cheap, "nonlinear_kind": nonlinear}
 
 
 def split_record(config: dict, payload: dict) -> dict:
-    """The split a run asked for and the one it realised (from the artifact's element kinds).
-    Raises when they disagree: exactly round(r · m) cheap elements, all of the cheap kind."""
-    want = describe_partition(config.get("partition"))
-    kinds = element_kinds(payload)
-    m = len(kinds)
-    counts = {name: int((kinds == code).sum()) for code, name in KIND_NAMES.items()}
-    cheap = counts["linear"] + counts["corotational"]
-    other = "corotational" if want["cheap_kind"] == "linear" else "linear"
-    if counts[other] != 0:
-        raise ValueError(f"partition asked for {want['cheap_kind']} cheap elements, the run has "
-                         f"{counts[other]} {other} ones")
+    """The split a run asked for and the one it realised (from the artifact's element kinds and
+    legend). Raises when they disagree: exactly round(r · m) cheap elements, all of the cheap
+    kind, and every other element of the nonlinear kind. "tled_elements" counts the nonlinear
+    ones (TLED, or ANP where the partition asks for it)."""
+    small_strain = small_strain_kinds(payload)
+    want = describe_partition(config.get("partition"), small_strain)
+    counts = kind_counts(payload)
+    m = sum(counts.values())
+    cheap = sum(counts[k] for k in small_strain)
+    for name, n in counts.items():
+        if n and name not in (want["cheap_kind"], want["nonlinear_kind"]):
+            raise ValueError(f"partition asked for {want['cheap_kind']} cheap elements and {want['nonlinear_kind']} "
+                             f"nonlinear ones, the run has {n} {name} ones")
     if want["requested_r"] is not None:
         expected = int(np.floor(want["requested_r"] * m + 0.5))
         if cheap != expected:
             raise ValueError(f"partition asked for r = {want['requested_r']} of {m} elements "
                              f"({expected} cheap), the run has {cheap}")
-    return dict(want, r=cheap / m, elements=m, cheap_elements=cheap, tled_elements=counts["tled"],
+    return dict(want, r=cheap / m, elements=m, cheap_elements=cheap, tled_elements=m - cheap,
                 counts=counts)
 
 

@@ -36,10 +36,11 @@ def report(ctx):
     timing = ctx.runs("timing")[0].payload
     runs = [run for run in timing["runs"] if run["threads"] == min(x["threads"] for x in timing["runs"])]
     rows_data = []
+    small_strain = common.small_strain_kinds(timing)
     for run in runs:
         c = run["counts"]
         m = sum(c.values())
-        rows_data.append({"r": (c["linear"] + c["corotational"]) / m, "counts": c, "run": run})
+        rows_data.append({"r": sum(c[k] for k in small_strain) / m, "counts": c, "run": run})
     rows_data.sort(key=lambda x: x["r"])
     base = next(x for x in rows_data if x["r"] == 0.0)["run"]["steps_per_second"]
     f0 = paper_rate.get(0)
