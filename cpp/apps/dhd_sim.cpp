@@ -1,5 +1,5 @@
 // dhd_sim: the dual-mode hybrid explicit FEM of paper 000 (DHD-FEA). Reads a tet_mesh
-// artifact, partitions the elements into linear / TLED / corotational, runs the explicit
+// artifact, partitions the elements into kinds (fem::kElementKinds), runs the explicit
 // central-difference dynamics or the static equilibrium, and writes a "dhd_result" artifact.
 // With --bench: steps per second of four partitions in one run ("dhd_bench").
 // Config reference: cpp/apps/dhd_sim.md.
@@ -15,12 +15,24 @@ using namespace softsim;
 
 namespace {
 
+// "linear / tled / corotational / anp".
+std::string kinds_in_words() {
+  std::string out;
+  for (const fem::ElementKindInfo& info : fem::kElementKinds) out += (out.empty() ? "" : " / ") + std::string(info.name);
+  return out;
+}
+
+// One ns-per-element column per element kind (fem::kElementKinds).
 void print_bench(const std::vector<hybrid::BenchRun>& runs) {
-  std::printf("%-18s %6s %8s %12s %10s %10s %10s\n", "partition", "r", "threads", "steps/s", "ns/linear", "ns/tled",
-              "ns/corot");
-  for (const auto& b : runs)
-    std::printf("%-18s %6.2f %8d %12.1f %10.2f %10.2f %10.2f\n", b.partition.c_str(), b.linear_fraction, b.threads,
-                b.steps_per_second, b.ns_per_element[0], b.ns_per_element[1], b.ns_per_element[2]);
+  std::printf("%-18s %6s %8s %12s", "partition", "r", "threads", "steps/s");
+  for (const fem::ElementKindInfo& info : fem::kElementKinds)
+    std::printf(" %*s", 10, (std::string("ns/") + info.name).c_str());
+  std::printf("\n");
+  for (const auto& b : runs) {
+    std::printf("%-18s %6.2f %8d %12.1f", b.partition.c_str(), b.linear_fraction, b.threads, b.steps_per_second);
+    for (int k = 0; k < fem::kNumElementKinds; ++k) std::printf(" %10.2f", b.ns_per_element[k]);
+    std::printf("\n");
+  }
 }
 
 }  // namespace
@@ -28,7 +40,7 @@ void print_bench(const std::vector<hybrid::BenchRun>& runs) {
 int main(int argc, char** argv) {
   app::AppInfo info;
   info.name = "dhd_sim";
-  info.summary = "dual-mode hybrid FEM (linear / TLED / corotational elements), explicit or static (paper 000)";
+  info.summary = "dual-mode hybrid FEM (" + kinds_in_words() + " elements), explicit or static (paper 000)";
   info.flags = {"--bench"};
   info.config_help =
       "  {\"mesh\": tet_mesh artifact, \"material\": {\"model\", \"E\", \"nu\", \"density\"}, \"damping\": {\"alpha\"},\n"
@@ -37,6 +49,10 @@ int main(int argc, char** argv) {
       "   \"solver\": {\"kind\": explicit|static, \"steps\", \"dt\" | \"safety_factor\", \"force_dt\", \"increments\", ...},\n"
       "   \"output\": {\"vtu\", \"vtu_interval\", \"vtu_format\", \"trajectories\", \"trajectory_interval\", \"velocity\"},\n"
       "   \"threads\": 1, \"bench\": {\"steps\", \"threads\", \"linear_fraction\"}}\n"
+      "  Element kinds (partition \"element\", \"linear_element\", \"nonlinear_element\"; the artifact's element_kind\n"
+      "  codes): " +
+      fem::kind_legend_text() +
+      "\n"
       "  Full reference: cpp/apps/dhd_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
     const io::JsonReader& cfg = ctx.config();

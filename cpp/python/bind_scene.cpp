@@ -10,8 +10,10 @@
 
 #include "bindings.hpp"
 #include "config_source.hpp"
+#include "json_convert.hpp"
 #include "py_arrays.hpp"
 #include "py_mesh.hpp"
+#include "softsim/hybrid/dhd_run.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 
@@ -63,6 +65,12 @@ py::dict energies(const hybrid::DhdScene& s) {
 }  // namespace
 
 void bind_scene(py::module_& m) {
+  // The element kinds (fem::kElementKinds) as the dhd_result artifact's legend: entry k names
+  // element_kind value k.
+  m.attr("ELEMENT_KIND_LEGEND") = from_json(hybrid::element_kind_legend());
+  static const std::string element_kind_doc = "Kind of each element: " + fem::kind_legend_text() +
+                                              " (softsim.ELEMENT_KIND_LEGEND, the dhd_result artifact's "
+                                              "element_kind_legend).";
   using hybrid::DhdScene;
   py::class_<DhdScene>(m, "Scene", R"doc(
 A dhd_sim scene stepped from Python: Scene(config, mesh=None).
@@ -101,7 +109,7 @@ inverted element: exit 3; the scene must then be reset()).
             for (const fem::ElementKind kind : s.kinds()) k.push_back(static_cast<int>(kind));
             return py::array_t<int>(k.size(), k.data());
           },
-          "Kind of each element: 0 linear, 1 tled, 2 corotational, 3 anp (the dhd_result legend).")
+          element_kind_doc.c_str())
       .def(
           "displacement",
           [](py::object self, bool copy) -> py::array {

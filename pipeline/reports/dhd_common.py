@@ -22,9 +22,10 @@ import re
 import numpy as np
 
 from pipeline import plots
+from pipeline.element_kinds import (element_kind_names, element_kinds, kind_counts, kind_legend,  # noqa: F401
+                                    kind_names, small_strain_kinds)
 from pipeline.report_md import read_parts
 
-KIND_NAMES = {0: "linear", 1: "tled", 2: "corotational"}   # fem::ElementKind
 SECTION_DIR = "sections"
 
 
@@ -97,14 +98,18 @@ def boundary_owner(tets: np.ndarray, boundary: np.ndarray) -> np.ndarray:
     return np.array([owner[tuple(sorted(f))] for f in boundary], dtype=int)
 
 
-KIND_EDGE = {0: (0.15, 0.15, 0.15, 0.9), 1: (1.0, 1.0, 1.0, 0.9), 2: (0.2, 0.35, 0.9, 0.9)}
+# Triangle edge colour by element kind name: dark linear, blue corotational, light for the
+# nonlinear kinds (TLED, and any kind not named here, e.g. ANP).
+KIND_EDGE = {"linear": (0.15, 0.15, 0.15, 0.9), "corotational": (0.2, 0.35, 0.9, 0.9)}
+NONLINEAR_EDGE = (1.0, 1.0, 1.0, 0.9)
 
 
 def draw_deformed(ax, nodes, tets, boundary, u, kinds, vmax=None, view=(22, -58), scale_mm=True,
                   cmap="viridis", values=None, axis_labels=True):
     """The deformed boundary coloured by |u| (or by the nodal scalar `values`, e.g. the difference
     to TLED, in display units), triangle edges coloured by the kind of the element they belong to
-    (as in 000 Fig. 10: light edges nonlinear, dark edges linear)."""
+    (as in 000 Fig. 10: light edges nonlinear, dark edges linear). `kinds`: each element's kind
+    name (element_kind_names)."""
     from matplotlib import cm, colors
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -117,7 +122,10 @@ def draw_deformed(ax, nodes, tets, boundary, u, kinds, vmax=None, view=(22, -58)
     norm = colors.Normalize(0.0, vmax if vmax is not None else max(face_mag.max(), 1e-12))
     mapper = cm.ScalarMappable(norm=norm, cmap=cmap)
     faces = mapper.to_rgba(face_mag)
-    edges = [KIND_EDGE[int(kinds[o])] for o in owner]
+    kinds = np.asarray(kinds)
+    if kinds.dtype.kind != "U":
+        raise TypeError("draw_deformed: kinds must be element kind names (element_kind_names), not codes")
+    edges = [KIND_EDGE.get(str(kinds[o]), NONLINEAR_EDGE) for o in owner]
     coll = Poly3DCollection(x[tri], facecolors=faces, edgecolors=edges, linewidths=0.35)
     ax.add_collection3d(coll)
     lo, hi = (nodes * f).min(axis=0), (nodes * f).max(axis=0)
@@ -143,8 +151,8 @@ def draw_difference(ax, nodes, tets, boundary, u, kinds, values_mm, vmax, view=(
 
 
 def write_vtu(path, nodes, tets, u, kinds, extra_point_data=None):
-    """The reference mesh with point data "displacement" (m) and cell data "element_kind"
-    (0 linear, 1 tled, 2 corotational); ParaView's Warp By Vector shows the deformed shape."""
+    """The reference mesh with point data "displacement" (m) and cell data "element_kind" (the
+    codes of the artifact's element_kind_legend); ParaView's Warp By Vector shows the deformed shape."""
     import meshio
     point_data = {"displacement": np.asarray(u, dtype=float)}
     for k, v in (extra_point_data or {}).items():
@@ -187,6 +195,35 @@ def assemble_summary(ctx) -> None:
     ctx.out("summary.md").write_text("\n".join(p for p in parts if p))
 
 
+# --------------------------------------------------------------------------- the paper's numbers
+# Every figure of the paper lives in the "paper" block of its experiment file; reports read it
+# from there (ctx.experiment for their own, experiment_paper for another's, e.g. in the verdict).
+def experiment_paper(name: str) -> dict:
+    """The "paper" block of experiments/<name>.json; {} when the file or the block is absent."""
+    from pipeline.paths import EXPERIMENTS
+    path = EXPERIMENTS / f"{name}.json"
+    return json.loads(path.read_text()).get("paper", {}) if path.exists() else {}
+
+
+def paper_error_shares(paper: dict) -> list:
+    """The shares r (percent) at which 000 Tables 2–3 report an error, from a "paper" block."""
+    return sorted({r for name in ("table2", "table3") for r in paper.get(name, {}).get("linear_fraction_percent", [])})
+
+
+def paper_frame_rates(paper: dict) -> dict:
+    """{r percent: frame rate (Hz)} of 000 Table 1, from a "paper" block."""
+    t = paper.get("table1", {})
+    return dict(zip(t.get("linear_fraction_percent", []), t.get("frame_rate_hz", [])))
+
+
+def share_range(shares) -> str:
+    """"10–40" for the shares [10, 20, 30, 40] (percent)."""
+    shares = sorted(shares)
+    if not shares:
+        return "the paper's shares"
+    return f"{shares[0]}" if shares[0] == shares[-1] else f"{shares[0]}–{shares[-1]}"
+
+
 def _span(values, digits=2, whole_above_10=True):
     values = [v for v in values if v is not None]
     if not values:
@@ -206,6 +243,8 @@ def verdict(facts: dict) -> str:
     """The opening "in short" of summary.md, in plain words, from the facts the reports left."""
     agree, differ, why = [], [], []
     t2, t1 = facts.get("table2"), facts.get("table1")
+    shares = share_range(paper_error_shares(experiment_paper("dhd_table2")))
+    rate0 = paper_frame_rates(experiment_paper("dhd_table1")).get(0)
     part, liver = facts.get("partition"), facts.get("liver")
     if t2:
         agree.append("the error of DHD-FEA against all-TLED grows with the share r of linear elements"
@@ -215,13 +254,13 @@ def verdict(facts: dict) -> str:
             paper = t2["paper_10_40"].get(load)
             if paper:
                 ratio = [p / o for p, o in zip(paper, ours) if o > 0]
-                differ.append(f"at {load} and r = 10–40 % our settled errors are {_span(ours, 2)} %, the paper's "
+                differ.append(f"at {load} and r = {shares} % our settled errors are {_span(ours, 2)} %, the paper's "
                               f"{_span(paper, 3, whole_above_10=False)} %: {_span(ratio, 2)} times smaller")
         if t2.get("transient_10_40"):
             load, vals = sorted(t2["transient_10_40"].items())[0]
             why.append(f"the paper compares the two models after 1000 iterations of a motion started by applying the "
                        f"displacement at once; read that way (no damping) we get {_span(vals, 2)} % at {load} for "
-                       "r = 10–40 %, growing with r like the paper's: most of such an error is the phase drift between "
+                       f"r = {shares} %, growing with r like the paper's: most of such an error is the phase drift between "
                        "two vibrating bodies of slightly different stiffness, so it depends on damping and sampling time, "
                        "which the paper does not give; the settled comparison isolates the error of the linear "
                        "elements themselves, which is small because they sit where strains are small")
@@ -255,8 +294,8 @@ def verdict(facts: dict) -> str:
                        "see cpp/apps/dhd_sim.md), and the node phase (gather and central-difference update, "
                        f"{node}) remains")
             why.append(f"absolute speed is not comparable: {_f(t1['steps_per_second_tled'], 3)} steps/s all-TLED on "
-                       "one core here against 22 frames/s there, whose frames include rendering and an unknown number "
-                       "of steps")
+                       f"one core here against {_f(rate0, 3) if rate0 else 'the paper’s'} frames/s there, whose frames "
+                       "include rendering and an unknown number of steps")
     if not (agree or differ or why):
         return ""
     out = ["**In short.**\n"]
@@ -297,48 +336,53 @@ def seconds_per_step(payload: dict) -> float:
     return 1.0 / steps_per_second(payload)
 
 
-def element_kinds(payload: dict) -> np.ndarray:
-    return np.asarray(payload["element_kind"], dtype=int)
-
-
-def describe_partition(partition: dict) -> dict:
+def describe_partition(partition: dict, small_strain=None) -> dict:
     """What a dhd_sim "partition" config asks for: strategy (uniform | layer | distance | strain
     | layers | tags | sphere), the requested share r of cheap elements (None when the strategy
-    does not state one) and the cheap kind (linear or corotational)."""
+    does not state one), the cheap kind (linear_element) and the nonlinear kind
+    (nonlinear_element). A uniform partition needs `small_strain`, the names of the small-strain
+    kinds (small_strain_kinds of the run's artifact), to tell whether its element is cheap."""
     p = partition or {}
     kind = p.get("kind", "linear_fraction" if "linear_fraction" in p else "uniform")
     cheap = p.get("linear_element", "linear")
+    nonlinear = p.get("nonlinear_element", "tled")
     if kind == "uniform":
+        if small_strain is None:
+            raise ValueError("describe_partition: a uniform partition needs the small-strain kinds of the legend")
         element = p.get("element", "tled")
-        return {"strategy": "uniform", "requested_r": 0.0 if element == "tled" else 1.0,
-                "cheap_kind": cheap if element == "tled" else element}
+        is_cheap = element in small_strain
+        return {"strategy": "uniform", "requested_r": 1.0 if is_cheap else 0.0,
+                "cheap_kind": element if is_cheap else cheap, "nonlinear_kind": nonlinear if is_cheap else element}
     if kind == "linear_fraction":
         strategy = "layer" if p.get("distance", "euclidean") == "depth" else "distance"
-        return {"strategy": strategy, "requested_r": float(p["linear_fraction"]), "cheap_kind": cheap}
+        return {"strategy": strategy, "requested_r": float(p["linear_fraction"]), "cheap_kind": cheap,
+                "nonlinear_kind": nonlinear}
     if kind == "strain":
         return {"strategy": "strain", "requested_r": float(p["linear_fraction"]) if "linear_fraction" in p
-                else None, "cheap_kind": cheap}
-    return {"strategy": kind, "requested_r": None, "cheap_kind": cheap}
+                else None, "cheap_kind": cheap, "nonlinear_kind": nonlinear}
+    return {"strategy": kind, "requested_r": None, "cheap_kind": cheap, "nonlinear_kind": nonlinear}
 
 
 def split_record(config: dict, payload: dict) -> dict:
-    """The split a run asked for and the one it realised (from the artifact's element kinds).
-    Raises when they disagree: exactly round(r · m) cheap elements, all of the cheap kind."""
-    want = describe_partition(config.get("partition"))
-    kinds = element_kinds(payload)
-    m = len(kinds)
-    counts = {name: int((kinds == code).sum()) for code, name in KIND_NAMES.items()}
-    cheap = counts["linear"] + counts["corotational"]
-    other = "corotational" if want["cheap_kind"] == "linear" else "linear"
-    if counts[other] != 0:
-        raise ValueError(f"partition asked for {want['cheap_kind']} cheap elements, the run has "
-                         f"{counts[other]} {other} ones")
+    """The split a run asked for and the one it realised (from the artifact's element kinds and
+    legend). Raises when they disagree: exactly round(r · m) cheap elements, all of the cheap
+    kind, and every other element of the nonlinear kind. "tled_elements" counts the nonlinear
+    ones (TLED, or ANP where the partition asks for it)."""
+    small_strain = small_strain_kinds(payload)
+    want = describe_partition(config.get("partition"), small_strain)
+    counts = kind_counts(payload)
+    m = sum(counts.values())
+    cheap = sum(counts[k] for k in small_strain)
+    for name, n in counts.items():
+        if n and name not in (want["cheap_kind"], want["nonlinear_kind"]):
+            raise ValueError(f"partition asked for {want['cheap_kind']} cheap elements and {want['nonlinear_kind']} "
+                             f"nonlinear ones, the run has {n} {name} ones")
     if want["requested_r"] is not None:
         expected = int(np.floor(want["requested_r"] * m + 0.5))
         if cheap != expected:
             raise ValueError(f"partition asked for r = {want['requested_r']} of {m} elements "
                              f"({expected} cheap), the run has {cheap}")
-    return dict(want, r=cheap / m, elements=m, cheap_elements=cheap, tled_elements=counts["tled"],
+    return dict(want, r=cheap / m, elements=m, cheap_elements=cheap, tled_elements=m - cheap,
                 counts=counts)
 
 

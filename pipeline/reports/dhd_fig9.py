@@ -75,7 +75,7 @@ def report(ctx):
     table = []
     for i, x in enumerate(cases):
         u = common.displacement(x["run"])
-        kinds = common.element_kinds(x["run"].payload)
+        kinds = common.element_kind_names(x["run"].payload)
         diff = np.linalg.norm(u - u_ref, axis=1)
         ax = fig.add_subplot(grid[0, i], projection="3d", facecolor="none")
         m1 = common.draw_deformed(ax, nodes, tets, tri_full, u, kinds, vmax=vmax, view=(24, -62))
@@ -88,7 +88,7 @@ def report(ctx):
         ax.set_title("|u − u_TLED|, cut open", fontsize=7)
         e = common.displacement_error(u, u_ref, applied=applied)
         slug = x["slug"]
-        common.write_vtu(ctx.out(f"fig9_{slug}.vtu"), nodes, tets, u, kinds,
+        common.write_vtu(ctx.out(f"fig9_{slug}.vtu"), nodes, tets, u, common.element_kinds(x["run"].payload),
                          {"difference_to_tled": u - u_ref})
         table.append([_case_label(x), x["counts"]["linear"], x["counts"]["tled"], x["counts"]["corotational"],
                       np.linalg.norm(u, axis=1).max() * 1e3, common.pct(e["rel_mean"], 3), diff.max() * 1e3,

@@ -93,7 +93,7 @@ def report(ctx):
     fixed = nodes[mesh["node_sets"]["fixed"]] * 1e3
     for i, (title, x) in enumerate(cases):
         u = common.displacement(x["run"])
-        kinds = common.element_kinds(x["run"].payload)
+        kinds = common.element_kind_names(x["run"].payload)
         ax = fig.add_subplot(grid[0, i], projection="3d")
         m1 = common.draw_deformed(ax, nodes, tets, tri, u, kinds, vmax=vmax, view=(28, -70))
         ax.scatter(fixed[:, 0], fixed[:, 1], fixed[:, 2], s=1, c="tab:red", alpha=0.5)

@@ -28,6 +28,10 @@ def paper_tables(ctx):
     return out
 
 
+def _count_word(n: int) -> str:
+    return {2: "two", 3: "three", 4: "four", 5: "five", 6: "six"}.get(n, str(n))
+
+
 def _paper_for(paper, load, unit_scale):
     return next((v for k, v in paper.items() if abs(k - load * unit_scale) < 1e-9), {})
 
@@ -35,6 +39,8 @@ def _paper_for(paper, load, unit_scale):
 def report(ctx):
     unit, unit_scale = common.display_unit(ctx)
     paper = paper_tables(ctx)
+    # The shares the paper reports (experiments/dhd_table2.json), for the comparisons in words.
+    paper_shares = common.paper_error_shares(ctx.experiment.get("paper", {}))
     by_load = common.errors_against_reference(common.sim_rows(ctx, ctx.params.get("sim", "sim")))
     loads = sorted(by_load)
     steps = by_load[loads[0]][0]["run"].payload["solver"]["steps"]
@@ -140,7 +146,7 @@ def report(ctx):
         p = _paper_for(paper, load, unit_scale)
         if p:
             ours = ", ".join(f"{fmt(100 * g[k]['error']['rel_mean'], 2)} %" for k in sorted(p) if k in g)
-            words.append(f"At {fmt(load * unit_scale)} {unit} and r = 10–40 % our settled error is {ours}; the paper "
+            words.append(f"At {fmt(load * unit_scale)} {unit} and r = {common.share_range(sorted(p))} % our settled error is {ours}; the paper "
                          f"reports {', '.join(f'{v} %' for v in p.values())}.")
         full = g.get(100)
         if full:
@@ -152,7 +158,7 @@ def report(ctx):
         eb = {round(x["r"], 6): x["error"]["rel_mean"] for x in by_load[b]}
         rs = [r for r in ea if r in eb and r > 0]
         words.append(f"The larger displacement gives the larger error at {sum(eb[r] > ea[r] for r in rs)} of {len(rs)} "
-                     "shares (the paper: at all four), and the error grows with r "
+                     f"shares (the paper: at all {_count_word(len(paper_shares))}), and the error grows with r "
                      + ("monotonically" if all(np.all(np.diff([x["error"]["rel_mean"] for x in by_load[l]]) >= 0)
                                               for l in loads) else "but not monotonically") + ", as in the paper.")
     if settle:
@@ -185,12 +191,12 @@ def report(ctx):
         label = f"{fmt(load * unit_scale)} {unit}"
         g = {int(round(100 * x["r"])): x for x in by_load[load]}
         p = _paper_for(paper, load, unit_scale)
-        facts["settled_10_40"][label] = [100 * g[r]["error"]["rel_mean"] for r in (10, 20, 30, 40) if r in g]
+        facts["settled_10_40"][label] = [100 * g[r]["error"]["rel_mean"] for r in paper_shares if r in g]
         if p:
-            facts["paper_10_40"][label] = [p[r] for r in (10, 20, 30, 40) if r in p]
+            facts["paper_10_40"][label] = [p[r] for r in paper_shares if r in p]
         if transient:
             t = transient.get((min(a for a, _ in transient), load), {})
-            facts["transient_10_40"][label] = [100 * t[r]["error"]["rel_mean"] for r in (10, 20, 30, 40) if r in t]
+            facts["transient_10_40"][label] = [100 * t[r]["error"]["rel_mean"] for r in paper_shares if r in t]
     if len(loads) >= 2:
         ea = {round(x["r"], 6): x["error"]["rel_mean"] for x in by_load[loads[0]]}
         eb = {round(x["r"], 6): x["error"]["rel_mean"] for x in by_load[loads[1]]}

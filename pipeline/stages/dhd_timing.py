@@ -16,7 +16,8 @@ Pipeline stage (mark it "exclusive": true so nothing else runs meanwhile):
 Each measurement is one `dhd_sim` process (from the pipeline's bin folder) whose artifact's
 "timing" block gives the stepping loop's steps/s (setup and file I/O excluded), the kernel time
 per element of each kind and the node-phase time per node. The artifact ("dhd_timing" v1) keeps
-every sample, the best and the median per partition, the element counts, the binary's sha256 and the CPU.
+every sample, the best and the median per partition, the element counts by kind name, the
+engine's element-kind legend (from its artifacts), the binary's sha256 and the CPU.
 """
 # Executables this stage runs: part of its cache key (pipeline/runner.py).
 TOOLS = ("dhd_sim",)
@@ -32,11 +33,11 @@ from pathlib import Path
 from pipeline.artifacts import read_artifact, write_artifact
 from pipeline.hashing import file_hash
 from pipeline.paths import BIN, ROOT
+from pipeline.element_kinds import kind_counts, kind_legend
 
 TOOL = "pipeline.stages.dhd_timing"
 SCHEMA = "dhd_timing"
 KEYS = {"engine", "sim", "partitions", "threads", "repeats"}
-KIND_NAMES = {0: "linear", 1: "tled", 2: "corotational"}
 
 
 class TimingConfigError(ValueError):
@@ -90,6 +91,7 @@ def run(ctx):
         raise TimingConfigError(f"no executable {binary} (build dhd_sim first)")
     samples = {(th, k): [] for th in threads for k in range(len(parts))}
     details = {}
+    legend = None
     with tempfile.TemporaryDirectory(prefix="dhd_timing_") as tmp:
         cfg_path, out_path = Path(tmp) / "run.json", Path(tmp) / "out.json"
         for rnd, th, k in schedule(len(parts), threads, repeats):
@@ -107,8 +109,8 @@ def run(ctx):
             record = {"ns_per_element": timing.get("ns_per_element", {}),
                       "node_phase_ns_per_node": timing.get("node_phase_ns_per_node")}
             if not details.get((th, k)):
-                kinds = payload["element_kind"]
-                record["counts"] = {name: sum(1 for v in kinds if v == code) for code, name in KIND_NAMES.items()}
+                legend = kind_legend(payload)
+                record["counts"] = kind_counts(payload)
                 record["dt"] = payload["solver"]["dt"]
                 record["steps"] = payload["solver"]["steps"]
             details.setdefault((th, k), []).append(record)
@@ -131,7 +133,7 @@ def run(ctx):
                 "ns_per_element": {name: statistics.median(v) for name, v in per_kind.items()},
                 "node_phase_ns_per_node": statistics.median(node_ns) if node_ns else None,
             })
-    payload = {"runs": runs, "repeats": repeats, "order": "interleaved round robin",
+    payload = {"runs": runs, "element_kind_legend": legend, "repeats": repeats, "order": "interleaved round robin",
                "binary_sha256": file_hash(binary), "cpu": cpu_model(), "cpu_count": os.cpu_count()}
     mesh = Path(ROOT / cfg["sim"]["mesh"])
     inputs = [mesh] + ([Path(ROOT / cfg["engine"])] if "engine" in cfg else [])

@@ -6,6 +6,7 @@
 // weight of a hanging block; failures surface as the right error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -199,6 +200,43 @@ TEST(Explicit, OneAndTwoThreadsAreBitIdentical) {
   for (std::size_t j = 0; j < a.trajectories.size(); ++j)
     for (std::size_t s = 0; s < a.trajectories[j].size(); ++s) EXPECT_EQ(a.trajectories[j][s], b.trajectories[j][s]);
   EXPECT_GT(max_abs(a.displacement), 1e-3);
+}
+
+// The thread split follows approximate cost estimates (ElementSet::relative_cost, tile_cost):
+// every element kind present, ANP with its nodal-pressure pre-pass included, and splits into
+// 1 to 7 parts over tiles of two sizes must all give the same bits.
+TEST(Explicit, EveryKindAndEveryThreadSplitGiveTheSameBits) {
+  const auto m = cuboid(5, 4, 4, 0.05, 0.04, 0.04);  // 400 elements
+  const fem::Material mat = fem::Material::make(kPaper, material::NeoHookeanForm::decoupled);
+  std::vector<ElementKind> kinds(m.num_tets());
+  for (int e = 0; e < m.num_tets(); ++e) kinds[e] = static_cast<ElementKind>((e * 5 + e / 11) % fem::kNumElementKinds);
+  for (int k = 0; k < fem::kNumElementKinds; ++k)
+    ASSERT_GT(std::count(kinds.begin(), kinds.end(), static_cast<ElementKind>(k)), 0) << fem::kind_name(static_cast<ElementKind>(k));
+  dynamics::Scene scene;
+  scene.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero()),
+                       constraint(m, "top", Eigen::Vector3d(0.002, -0.001, -0.006))};
+  scene.constraints[1].ramp.duration = 0.05;
+  dynamics::ExplicitOptions opt;
+  opt.dt = 0.8 * dynamics::critical_time_step(m, kPaper).dt;
+  opt.steps = 90;
+  opt.damping_alpha = 1.0;
+  opt.energy_interval = 17;
+  opt.threads = 1;
+  const auto ref = run_explicit(m, kinds, mat, scene, opt, {}, 16);
+  EXPECT_GT(max_abs(ref.displacement), 1e-3);
+  for (int tile_nodes : {16, 64})
+    for (int threads : {1, 2, 3, 4, 7}) {
+      opt.threads = threads;
+      const auto r = run_explicit(m, kinds, mat, scene, opt, {}, tile_nodes);
+      ASSERT_EQ(r.displacement.size(), ref.displacement.size());
+      EXPECT_EQ(0, std::memcmp(r.displacement.data(), ref.displacement.data(), r.displacement.size() * sizeof(double)))
+          << threads << " threads, tiles of " << tile_nodes << " nodes";
+      ASSERT_EQ(r.energies.size(), ref.energies.size());
+      for (std::size_t s = 0; s < r.energies.size(); ++s) {
+        EXPECT_EQ(r.energies[s].strain, ref.energies[s].strain) << threads << " threads, sample " << s;
+        EXPECT_EQ(r.energies[s].kinetic, ref.energies[s].kinetic) << threads << " threads, sample " << s;
+      }
+    }
 }
 
 // Intervals up to the int range are accepted by the config: the next energy sample or snapshot

@@ -288,6 +288,73 @@ TEST(Config, StrictReadingNamesThePointer) {
   expect_error({{"mesh", "m"}, {"output", {{"vtu_format", "ascii"}}}}, "/output");
 }
 
+// fem::kElementKinds is the one table of element kinds: every kind has a distinct name that
+// parses back to it and a description, and both kinds of partition slot (small-strain and
+// nonlinear) have a member.
+TEST(ElementKinds, EveryKindHasANameThatParsesBackAndADescription) {
+  std::set<std::string> names;
+  int small_strain = 0;
+  for (int k = 0; k < fem::kNumElementKinds; ++k) {
+    const auto kind = static_cast<ElementKind>(k);
+    const fem::ElementKindInfo& info = fem::kind_info(kind);
+    EXPECT_EQ(static_cast<int>(info.kind), k);
+    const std::string name = fem::kind_name(kind);
+    EXPECT_FALSE(name.empty());
+    EXPECT_NE(name, "unknown");
+    EXPECT_GT(std::string(info.description).size(), 10u) << name;
+    ASSERT_TRUE(fem::parse_kind(name).has_value()) << name;
+    EXPECT_EQ(*fem::parse_kind(name), kind);
+    names.insert(name);
+    small_strain += info.small_strain;
+    EXPECT_NE(fem::kind_legend_text().find(std::to_string(k) + " " + name), std::string::npos) << name;
+  }
+  EXPECT_EQ(names.size(), static_cast<std::size_t>(fem::kNumElementKinds));
+  EXPECT_EQ(fem::kind_names().size(), names.size());
+  EXPECT_EQ(fem::kind_names(true).size(), static_cast<std::size_t>(small_strain));
+  EXPECT_EQ(fem::kind_names(false).size(), names.size() - small_strain);
+  EXPECT_GT(small_strain, 0);
+  EXPECT_LT(small_strain, fem::kNumElementKinds);
+  EXPECT_FALSE(fem::parse_kind("unknown").has_value());
+}
+
+// A run with every kind present: the artifact's legend lists every kind in code order, and the
+// counts give each kind (ANP included) and the small-strain share.
+TEST(ElementKinds, ArtifactLegendAndCountsListEveryKind) {
+  const auto m = cuboid(3, 3, 2, 0.03, 0.03, 0.02);  // 90 elements
+  const nlohmann::json j = {
+      {"mesh", "m"},
+      {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -0.001}}}}}}},
+      {"solver", {{"steps", 5}}}};
+  const hybrid::DhdConfig c = parse(j, m);
+  std::vector<ElementKind> kinds(m.num_tets());
+  std::vector<int> expected(fem::kNumElementKinds, 0);
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const int k = (e * 7) % fem::kNumElementKinds;
+    kinds[e] = static_cast<ElementKind>(k);
+    ++expected[k];
+  }
+  const hybrid::DhdRun run = hybrid::run_dhd(m, c, kinds, {});
+  const nlohmann::json p = hybrid::result_payload(m, c, run);
+  const nlohmann::json& legend = p.at("element_kind_legend");
+  ASSERT_EQ(legend.size(), static_cast<std::size_t>(fem::kNumElementKinds));
+  int small_strain = 0;
+  for (int k = 0; k < fem::kNumElementKinds; ++k) {
+    const fem::ElementKindInfo& info = fem::kElementKinds[k];
+    EXPECT_EQ(legend[k].at("name"), info.name);
+    EXPECT_EQ(legend[k].at("small_strain"), info.small_strain);
+    EXPECT_EQ(legend[k].at("description"), info.description);
+    EXPECT_GT(expected[k], 0);
+    EXPECT_EQ(p.at("element_counts").at(info.name), expected[k]) << info.name;
+    if (info.small_strain) small_strain += expected[k];
+  }
+  EXPECT_EQ(p.at("element_counts").size(), static_cast<std::size_t>(fem::kNumElementKinds) + 1);
+  EXPECT_DOUBLE_EQ(p.at("element_counts").at("linear_fraction").get<double>(),
+                   static_cast<double>(small_strain) / m.num_tets());
+  for (std::size_t e = 0; e < kinds.size(); ++e) EXPECT_EQ(p.at("element_kind")[e], static_cast<int>(kinds[e]));
+  // The bench and the run's timing name the kinds by the same table.
+  for (const auto& [name, ns] : p.at("timing").at("ns_per_element").items()) EXPECT_TRUE(fem::parse_kind(name)) << name;
+}
+
 TEST(Run, HybridWithZeroLinearShareIsExactlyTled) {
   const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
   nlohmann::json j = {{"mesh", "m"},

@@ -113,11 +113,24 @@ def test_pareto_front_of_a_monotone_trade_off_is_everything():
 
 
 # --------------------------------------------------------------------------- split bookkeeping
+# A legend of the artifact's shape. Its order differs from the engine's on purpose: the reports
+# must take every name from the artifact, not from codes they know.
+LEGEND = [{"name": "tled", "small_strain": False, "description": "TLED"},
+          {"name": "linear", "small_strain": True, "description": "linear"},
+          {"name": "anp", "small_strain": False, "description": "average nodal pressure"},
+          {"name": "corotational", "small_strain": True, "description": "corotational"}]
+LIN, TLED, ANP, COROT = 1, 0, 2, 3
+
+
+def sim_payload(kinds, **more):
+    return dict({"element_kind": list(kinds), "element_kind_legend": LEGEND}, **more)
+
+
 def fake_run(partition, kinds, applied=(0, 0, -0.006), steps_per_second=1000.0, u=None, stage="sim"):
     config = {"partition": partition,
               "boundary": {"fixed": ["bottom"], "prescribed": [{"nearest": [0, 0, 0], "displacement": list(applied)}]}}
-    payload = {"element_kind": list(kinds), "timing": {"steps_per_second": steps_per_second},
-               "displacement": (u if u is not None else np.zeros((3, 3))).tolist()}
+    payload = sim_payload(kinds, timing={"steps_per_second": steps_per_second},
+                          displacement=(u if u is not None else np.zeros((3, 3))).tolist())
     return SimpleNamespace(config=config, payload=payload, sweep={}, stage=stage)
 
 
@@ -126,30 +139,78 @@ def fake_run(partition, kinds, applied=(0, 0, -0.006), steps_per_second=1000.0, 
     ({"kind": "linear_fraction", "linear_fraction": 0.3, "distance": "depth"}, "layer", 0.3, "linear"),
     ({"kind": "strain", "linear_fraction": 0.2, "linear_element": "corotational"}, "strain", 0.2, "corotational"),
     ({"kind": "uniform", "element": "linear"}, "uniform", 1.0, "linear"),
+    ({"kind": "uniform", "element": "corotational"}, "uniform", 1.0, "corotational"),
+    ({"kind": "uniform", "element": "anp"}, "uniform", 0.0, "linear"),
     ({}, "uniform", 0.0, "linear"),
     ({"kind": "layers", "nonlinear_layers": 3}, "layers", None, "linear"),
 ])
 def test_describe_partition_reads_the_engine_config(partition, strategy, r, cheap):
-    d = common.describe_partition(partition)
+    d = common.describe_partition(partition, ["linear", "corotational"])
     assert (d["strategy"], d["requested_r"], d["cheap_kind"]) == (strategy, r, cheap)
 
 
 def test_split_record_counts_and_checks_the_realised_share():
-    kinds = [0] * 3 + [1] * 7
-    rec = common.split_record(fake_run({"linear_fraction": 0.3}, kinds).config, {"element_kind": kinds})
+    kinds = [LIN] * 3 + [TLED] * 7
+    rec = common.split_record(fake_run({"linear_fraction": 0.3}, kinds).config, sim_payload(kinds))
     assert (rec["cheap_elements"], rec["tled_elements"], rec["elements"]) == (3, 7, 10)
     assert rec["r"] == pytest.approx(0.3)
     # round(r · m) with halves up: r = 0.25 of 10 elements is 3 cheap elements, not 2.
     with pytest.raises(ValueError):
-        common.split_record({"partition": {"linear_fraction": 0.25}}, {"element_kind": [0] * 2 + [1] * 8})
-    common.split_record({"partition": {"linear_fraction": 0.25}}, {"element_kind": kinds})
+        common.split_record({"partition": {"linear_fraction": 0.25}}, sim_payload([LIN] * 2 + [TLED] * 8))
+    common.split_record({"partition": {"linear_fraction": 0.25}}, sim_payload(kinds))
     # A corotational run must not contain linear elements, and the other way round.
     with pytest.raises(ValueError):
         common.split_record({"partition": {"linear_fraction": 0.3, "linear_element": "corotational"}},
-                            {"element_kind": kinds})
+                            sim_payload(kinds))
     rec = common.split_record({"partition": {"linear_fraction": 0.3, "linear_element": "corotational"}},
-                              {"element_kind": [2] * 3 + [1] * 7})
-    assert rec["counts"] == {"linear": 0, "tled": 7, "corotational": 3}
+                              sim_payload([COROT] * 3 + [TLED] * 7))
+    assert rec["counts"] == {"linear": 0, "tled": 7, "corotational": 3, "anp": 0}
+
+
+def test_split_record_counts_anp_elements_by_the_legend():
+    # ANP is the nonlinear kind here: counted under its name, never dropped, never cheap.
+    kinds = [LIN] * 4 + [ANP] * 6
+    partition = {"linear_fraction": 0.4, "nonlinear_element": "anp"}
+    rec = common.split_record({"partition": partition}, sim_payload(kinds))
+    assert rec["counts"] == {"tled": 0, "linear": 4, "anp": 6, "corotational": 0}
+    assert (rec["cheap_elements"], rec["tled_elements"], rec["elements"]) == (4, 6, 10)
+    assert rec["r"] == pytest.approx(0.4) and rec["nonlinear_kind"] == "anp"
+    # A uniform ANP run is an all-nonlinear reference (r = 0), not an all-cheap one.
+    rec = common.split_record({"partition": {"kind": "uniform", "element": "anp"}}, sim_payload([ANP] * 5))
+    assert (rec["r"], rec["cheap_elements"], rec["nonlinear_kind"]) == (0.0, 0, "anp")
+    # ANP elements in a run that asked for TLED ones are a mismatch, not silently ignored.
+    with pytest.raises(ValueError, match="anp"):
+        common.split_record({"partition": {"linear_fraction": 0.4}}, sim_payload(kinds))
+    # Each element's name comes from the legend; a code beyond it is an error.
+    assert list(common.element_kind_names(sim_payload([ANP, LIN, COROT, TLED]))) == \
+        ["anp", "linear", "corotational", "tled"]
+    with pytest.raises(ValueError, match="legend"):
+        common.kind_counts(sim_payload([0, 4]))
+    with pytest.raises(ValueError, match="element_kind_legend"):
+        common.kind_counts({"element_kind": [0, 1]})
+
+
+def test_the_engine_artifact_legend_names_every_kind_and_reports_read_it(tmp_path):
+    """dhd_sim's own artifact: an ANP run realises its split under the legend's names."""
+    from conftest import run_tool, write_json
+    cfg = {"source": {"kind": "cuboid", "cells": [2, 2, 2], "size": [0.02, 0.02, 0.02]}}
+    r = run_tool("mesher", "--config", write_json(tmp_path / "m.json", cfg), "--out", tmp_path / "mesh.json")
+    assert r.returncode == 0, r.stderr
+    sim = {"mesh": str(tmp_path / "mesh.json"),
+           "partition": {"kind": "linear_fraction", "linear_fraction": 0.5, "nonlinear_element": "anp",
+                         "linear_element": "corotational"},
+           "boundary": {"fixed": ["bottom"], "prescribed": [{"set": "top", "displacement": [0, 0, -0.001]}]},
+           "solver": {"steps": 3}}
+    r = run_tool("dhd_sim", "--config", write_json(tmp_path / "s.json", sim), "--out", tmp_path / "out.json")
+    assert r.returncode == 0, r.stderr
+    payload = json.loads((tmp_path / "out.json").read_text())["payload"]
+    names = common.kind_names(payload)
+    assert set(names) >= {"linear", "tled", "corotational", "anp"}
+    assert len(set(names)) == len(names)
+    rec = common.split_record(sim, payload)
+    assert rec["counts"]["anp"] == rec["tled_elements"] == 20 and rec["counts"]["corotational"] == 20
+    assert rec["r"] == pytest.approx(0.5)
+    assert payload["element_counts"] == dict(rec["counts"], linear_fraction=0.5)
 
 
 def test_errors_are_taken_against_the_all_tled_run_of_the_same_load():
@@ -157,7 +218,7 @@ def test_errors_are_taken_against_the_all_tled_run_of_the_same_load():
     u06, u10 = rng.normal(size=(3, 3)), rng.normal(size=(3, 3))
     rows = []
     for applied, u_ref in (((0, 0, -0.006), u06), ((0, 0, -0.01), u10)):
-        for r, kinds, du, sps in ((0.0, [1] * 10, 0.0, 1000.0), (0.5, [0] * 5 + [1] * 5, 0.1, 1500.0)):
+        for r, kinds, du, sps in ((0.0, [TLED] * 10, 0.0, 1000.0), (0.5, [LIN] * 5 + [TLED] * 5, 0.1, 1500.0)):
             run = fake_run({"linear_fraction": r}, kinds, applied, sps, u_ref + du)
             rows.append(dict(common.split_record(run.config, run.payload), run=run, stage="sim",
                              applied=common.applied_length(run.config)))

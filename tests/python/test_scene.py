@@ -56,6 +56,22 @@ def test_stepped_in_pieces_equals_dhd_sim(block, tmp_path):
     assert np.array_equal(same.displacement(), scene.displacement())
 
 
+def test_element_kinds_are_the_artifacts_legend(block, tmp_path):
+    """softsim.ELEMENT_KIND_LEGEND is the dhd_result artifact's legend (one table in the engine),
+    and Scene.element_kind uses its codes."""
+    mesh, mesh_path = block
+    config = block_config(str(mesh_path), steps=2)
+    artifact = payload(make_artifact("dhd_sim", config, tmp_path))
+    assert softsim.ELEMENT_KIND_LEGEND == artifact["element_kind_legend"]
+    names = [k["name"] for k in softsim.ELEMENT_KIND_LEGEND]
+    assert "anp" in names and len(set(names)) == len(names)
+    scene = softsim.Scene(config)
+    assert np.array_equal(scene.element_kind, np.array(artifact["element_kind"]))
+    for code, name in enumerate(names):
+        assert f"{code} {name}" in softsim.Scene.element_kind.__doc__
+        assert artifact["element_counts"][name] == int((scene.element_kind == code).sum())
+
+
 def test_probe_moved_between_steps_settles_on_the_static_solution(block):
     """Dynamic relaxation: a tip moved to its place over many 1 ms frames in a damped body ends
     at the Newton equilibrium of the same tip position (000 eq. 24), force included."""

@@ -18,6 +18,7 @@ was expected). Long computations release the GIL. See cpp/python/README.md.
 import os as _os
 
 from ._core import (
+    ELEMENT_KIND_LEGEND,
     FitModel,
     InputError,
     Mesh,
@@ -47,6 +48,7 @@ def load_fit_model(source):
 
 
 __all__ = [
+    "ELEMENT_KIND_LEGEND",
     "FitModel",
     "InputError",
     "Mesh",

@@ -221,7 +221,9 @@ void anp_decoupled_kernel(const SoaView s, const double* __restrict u, int begin
 namespace {
 
 // Corotational: F = R S, forces R Kₑ (Rᵀx − X) = ⁰V R σ(S − I) ∇N (see material/small_strain.hpp),
-// one element at a time with the polar decomposition iterated to convergence.
+// one element at a time with the library's polar decomposition (material::polar_decomposition:
+// Frobenius-norm scaled Newton iterated to convergence).
+// An inverted element (J ≤ 0) gets zero forces here; the caller's min_j reports it.
 void corotational_exact(const SoaView& s, const double* __restrict u, int k, double mu, double lambda) {
   SOFTSIM_LOAD_H(s, u, k)
   SOFTSIM_F_AND_COFACTOR
@@ -245,11 +247,12 @@ void corotational_exact(const SoaView& s, const double* __restrict u, int k, dou
   SOFTSIM_STORE_FORCES(s, k, m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8])
 }
 
-// The same, vectorised: a fixed number of Newton iterations with determinant scaling (enough
-// for strains of a few tens of per cent); the size of the last update is kept per element, and
-// any element whose iteration had not converged (or that is inverted) is recomputed by
-// corotational_exact. The choice is made from the stored value of that element alone, so it is
-// deterministic.
+// The same, vectorised: always kPolarIterations Newton iterations (no early exit, so the loop
+// vectorises; enough for strains of a few tens of per cent). Each element's squared last update
+// is compared with kPolarConverged and a 0/1 flag stored in `last_update` (0: converged and not
+// inverted); if any element of the range is flagged, the flagged ones are recomputed by
+// corotational_exact after the loop. The choice is made from the stored flag of that element
+// alone, so it is deterministic whatever the split into threads.
 constexpr int kPolarIterations = 6;
 constexpr double kPolarConverged = 1e-20;  // squared size of the last update
 
@@ -264,8 +267,10 @@ void corotational_kernel(const SoaView s, const double* __restrict u, int begin,
     SOFTSIM_F_AND_COFACTOR
     (void)c10, (void)c11, (void)c12, (void)c20, (void)c21, (void)c22;
     jmin = std::min(jmin, J);
-    // Newton iteration X ← (γ X + X⁻ᵀ/γ)/2 from X = F with determinant scaling γ = |det X|^(−1/3)
-    // (Byers & Xu) until the update is small; no library call, so the loop vectorises.
+    // Newton iteration X ← (γ X + X⁻ᵀ/γ)/2 from X = F, kPolarIterations times. Determinant scaling
+    // γ = |det X|^(−1/3) (Byers & Xu) in the first iteration and as long as the previous squared
+    // update was ≥ 1e-4, γ = 1 (plain Newton, quadratic convergence) once it is below; no library
+    // call, so the loop vectorises.
     double x00 = f00, x01 = f01, x02 = f02, x10 = f10, x11 = f11, x12 = f12, x20 = f20, x21 = f21, x22 = f22;
     double change = 1.0;
 #pragma GCC unroll 8
@@ -290,7 +295,8 @@ void corotational_kernel(const SoaView s, const double* __restrict u, int begin,
     const double flag = J > 0 && change <= kPolarConverged ? 0.0 : 1.0;
     last_update[k] = flag;
     worst = std::max(worst, flag);
-    // S = Rᵀ F (symmetrised), σ = 2μ (S − I) + λ tr(S − I) I, ⁰V P = ⁰V R σ.
+    // S = Rᵀ F (symmetrised); s00 … s12 hold the entries of S − I. σ = 2μ (S − I) + λ tr(S − I) I,
+    // ⁰V P = ⁰V R σ.
     const double s00 = x00 * f00 + x10 * f10 + x20 * f20 - 1.0;
     const double s11 = x01 * f01 + x11 * f11 + x21 * f21 - 1.0;
     const double s22 = x02 * f02 + x12 * f12 + x22 * f22 - 1.0;

@@ -39,7 +39,8 @@ void anp_decoupled_kernel(const SoaView s, const double* __restrict u, int begin
 void volume_ratio_kernel(const SoaView s, const double* __restrict u, int begin, int end,
                          double* __restrict volume_ratio, double& min_j);
 
-// Corotational. `last_update` (one per slot) is scratch for the polar-decomposition fix-up.
+// Corotational. `last_update` (one per slot) is scratch for the polar-decomposition fix-up: the
+// kernel stores 0 (converged) or 1 (recompute on the exact path) per element.
 void corotational_kernel(const SoaView s, const double* __restrict u, int begin, int end, double mu, double lambda,
                          double* __restrict last_update, double& min_j);
 

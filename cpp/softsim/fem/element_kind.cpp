@@ -3,19 +3,34 @@
 namespace softsim::fem {
 
 const char* kind_name(ElementKind kind) {
-  switch (kind) {
-    case ElementKind::linear: return "linear";
-    case ElementKind::tled: return "tled";
-    case ElementKind::corotational: return "corotational";
-    case ElementKind::anp: return "anp";
-  }
-  return "unknown";
+  const int k = static_cast<int>(kind);
+  return k < kNumElementKinds ? kElementKinds[k].name : "unknown";
 }
 
 std::optional<ElementKind> parse_kind(const std::string& name) {
-  for (int k = 0; k < kNumElementKinds; ++k)
-    if (name == kind_name(static_cast<ElementKind>(k))) return static_cast<ElementKind>(k);
+  for (const ElementKindInfo& info : kElementKinds)
+    if (name == info.name) return info.kind;
   return std::nullopt;
+}
+
+std::vector<std::string> kind_names() {
+  std::vector<std::string> out;
+  for (const ElementKindInfo& info : kElementKinds) out.emplace_back(info.name);
+  return out;
+}
+
+std::vector<std::string> kind_names(bool small_strain) {
+  std::vector<std::string> out;
+  for (const ElementKindInfo& info : kElementKinds)
+    if (info.small_strain == small_strain) out.emplace_back(info.name);
+  return out;
+}
+
+std::string kind_legend_text() {
+  std::string out;
+  for (int k = 0; k < kNumElementKinds; ++k)
+    out += (k ? ", " : "") + std::to_string(k) + " " + kElementKinds[k].name;
+  return out;
 }
 
 }  // namespace softsim::fem

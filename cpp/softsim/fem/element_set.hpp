@@ -121,10 +121,16 @@ class ElementSet {
   const int* ready_nodes_end(int tile) const { return ready_nodes_.data() + ready_begin_[tile + 1]; }
   int first_tile(int node) const { return first_tile_[node]; }
   // Estimated cost of a tile's elements, linear rows and ready nodes (units of one TLED element).
+  // The costs below and relative_cost are approximate: ratios of bench_dhd timings measured once
+  // on the development machine (not at start-up), used only to split the work among threads. A
+  // poor estimate makes the split uneven, never the results different: forces are gathered per
+  // node in a fixed order and energies summed per slot, whatever the split.
   double tile_cost(int tile) const;
+  // One node's update (gather and central-difference step), approximate (bench_dhd's BM_Steps
+  // node phase per node over BM_Kernel's TLED time per element).
   static constexpr double kNodeCost = 2.5;
-  // One 3 × 3 block of a linear row: bench_dhd's BM_LinearRows per block over BM_Kernel's TLED
-  // time per element.
+  // One 3 × 3 block of a linear row, approximate: bench_dhd's BM_LinearRows per block over
+  // BM_Kernel's TLED time per element.
   static constexpr double kLinearBlockCost = 0.17;
 
   // Reference shape of internal slot i (gradients and volume as stored).
@@ -137,7 +143,7 @@ class ElementSet {
   void energies(const double* u, int begin, int end, double* energy, double* volume_ratio, double& min_j,
                 int& min_j_element) const;
 
-  // Relative cost of one element of each kind (for balancing threads), tled = 1.
+  // Approximate relative cost of one element of each kind (for balancing threads), tled = 1.
   static double relative_cost(ElementKind kind);
 
  private:

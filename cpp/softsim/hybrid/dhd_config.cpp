@@ -116,11 +116,11 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
   if (!p) return;
   const std::string kind = p->get_choice("kind", {"uniform", "layers", "linear_fraction", "tags", "sphere", "strain"},
                                          p->has("linear_fraction") ? "linear_fraction" : "uniform");
-  s.linear_element = read_kind(*p, "linear_element", {"linear", "corotational"}, "linear");
-  s.nonlinear_element = read_kind(*p, "nonlinear_element", {"tled", "anp"}, "tled");
+  s.linear_element = read_kind(*p, "linear_element", fem::kind_names(true), "linear");
+  s.nonlinear_element = read_kind(*p, "nonlinear_element", fem::kind_names(false), "tled");
   if (kind == "uniform") {
     s.kind = PartitionKind::uniform;
-    s.uniform_element = read_kind(*p, "element", {"tled", "linear", "corotational", "anp"}, default_element);
+    s.uniform_element = read_kind(*p, "element", fem::kind_names(), default_element);
   } else if (kind == "layers") {
     s.kind = PartitionKind::layers;
     s.nonlinear_layers = p->get_int32("nonlinear_layers");

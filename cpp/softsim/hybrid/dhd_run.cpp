@@ -21,6 +21,13 @@ nlohmann::json field(const std::vector<double>& u) {
 
 }  // namespace
 
+nlohmann::json element_kind_legend() {
+  nlohmann::json legend = nlohmann::json::array();
+  for (const fem::ElementKindInfo& info : fem::kElementKinds)
+    legend.push_back({{"name", info.name}, {"small_strain", info.small_strain}, {"description", info.description}});
+  return legend;
+}
+
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, const dynamics::SnapshotFn& snapshot) {
   return run_dhd(mesh, c, make_partition(mesh, c.partition), snapshot, {});
 }
@@ -59,13 +66,17 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
     ++counts[kinds[e]];
   }
   p["element_kind"] = kinds;
-  std::vector<std::string> legend;
-  for (int k = 0; k < fem::kNumElementKinds; ++k) legend.push_back(fem::kind_name(static_cast<fem::ElementKind>(k)));
-  p["element_kind_legend"] = legend;
-  p["element_counts"] = {{"linear", counts[0]},
-                         {"tled", counts[1]},
-                         {"corotational", counts[2]},
-                         {"linear_fraction", static_cast<double>(counts[0] + counts[2]) / kinds.size()}};
+  p["element_kind_legend"] = element_kind_legend();
+  // Every kind's count, and the realised share of the small-strain (cheap) kinds.
+  nlohmann::json element_counts = nlohmann::json::object();
+  int small_strain = 0;
+  for (const fem::ElementKindInfo& info : fem::kElementKinds) {
+    const int n = counts[static_cast<int>(info.kind)];
+    element_counts[info.name] = n;
+    if (info.small_strain) small_strain += n;
+  }
+  element_counts["linear_fraction"] = static_cast<double>(small_strain) / kinds.size();
+  p["element_counts"] = element_counts;
   const auto& m = c.material;
   p["material"] = {{"model", c.model},
                    {"E", m.elastic.youngs_modulus},

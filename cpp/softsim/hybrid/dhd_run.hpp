@@ -36,6 +36,10 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, const dynamic
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, std::vector<fem::ElementKind> kinds,
                const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress = {});
 
+// The artifact's "element_kind_legend": fem::kElementKinds in code order, one object per kind
+// {"name", "small_strain", "description"} (element_kind value k is entry k).
+nlohmann::json element_kind_legend();
+
 nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& config, const DhdRun& run);
 
 struct BenchRun {

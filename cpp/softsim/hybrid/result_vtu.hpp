@@ -4,7 +4,7 @@
 // <stem>_<step>.vtu files and the <stem>.pvd series that lists them with their times.
 //
 // Point data: displacement (m), velocity (m/s; zero for the static solver).
-// Cell data: element_kind (0 linear, 1 TLED, 2 corotational, 3 ANP), region (the mesh's tag, or
+// Cell data: element_kind (the codes of fem::kElementKinds), region (the mesh's tag, or
 // 0), green_lagrange_strain (E = ½(FᵀF − I), dimensionless), cauchy_stress (Pa, each element's
 // own law, fem/element_stress.hpp), both symmetric tensors of 6 components (xx yy zz xy yz xz),
 // and von_mises_stress (Pa). Positions are the reference nodes.
