@@ -1,24 +1,13 @@
 """The 3-D haptic scene, whole model -> results/haptic/: whole.md/csv (per mesh and input: size,
 substeps, peak force, frame times, deadline misses, events), forces_cube.png and
 forces_liver.png (force on the tool against time, with the probe's depth), summary.md."""
-import platform
-
 import numpy as np
 
 from pipeline import plots
+from pipeline.bench import cpu_description
 from pipeline.tables import write_table
 
 SCENES = (("cube_run", "cuboid", "forces_cube.png"), ("liver_run", "liver", "forces_liver.png"))
-
-
-def cpu_name():
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
 
 
 def row_of(scene, run):
@@ -65,7 +54,7 @@ def report(ctx):
                   1e3 * r["p50"], 1e3 * r["p99"], 1e3 * r["max"], r["misses"], r["events"]] for r in rows],
                 f"Whole model, one thread, offline runs of the generated inputs (haptic_sim run), each run alone in the "
                 f"pipeline on "
-                f"{cpu_name()}. A deadline miss is a frame whose computation took longer than the "
+                f"{cpu_description()}. A deadline miss is a frame whose computation took longer than the "
                 f"{1e3 * rows[0]['frame_step']:g} ms frame period.")
     worst = max(rows, key=lambda r: r["p99"])
     misses = sum(r["misses"] for r in rows)
@@ -82,7 +71,7 @@ def report(ctx):
           "at full depth the spring pulls the model straight back into the same failure after each recovery: the "
           "inversion-robust element of issue 18 is what this scene needs."
           for r in rows if r["events"]],
-        f"- Frame time, whole model on one core ({cpu_name()}): the slowest scene's p99 is "
+        f"- Frame time, whole model on one core ({cpu_description()}): the slowest scene's p99 is "
         f"{1e3 * worst['p99']:.3f} ms ({worst['scene']}, {worst['input']}, {worst['tets']} tets, "
         f"{worst['substeps']} substeps per frame); {misses} of {frames} frames missed the 1 ms deadline.",
         f"- Median frame time: at most {1e3 * max(r['p50'] for r in rows):.3f} ms over all runs.",

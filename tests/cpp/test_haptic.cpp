@@ -38,6 +38,22 @@ struct Block {
   }
 };
 
+haptic::HapticOptions spring(double stiffness) {
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = stiffness;
+  return opt;
+}
+
+// Pressed straight down (−z, ProbePath's default) from `origin` to `depth` over `ramp_time`, held.
+haptic::ProbePath press_down(const Eigen::Vector3d& origin, double depth, double ramp_time) {
+  haptic::ProbePath path;
+  path.origin = origin;
+  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
+  path.signal.amplitude = depth;
+  path.signal.ramp_time = ramp_time;
+  return path;
+}
+
 int node_at(const mesh::TetMesh& m, const Eigen::Vector3d& x) {
   for (int i = 0; i < m.num_nodes(); ++i)
     if ((m.nodes[i] - x).norm() < 1e-12) return i;
@@ -94,17 +110,11 @@ TEST(HapticScene, PressAndHoldSettlesOnTheStaticSpringSolution) {
   // The tip pressed 8 mm straight down over a top node and held: with damping the frames settle
   // where the static solver puts the same spring on that node.
   Block b;
-  haptic::HapticOptions opt;
-  opt.probe_stiffness = 100;
+  const haptic::HapticOptions opt = spring(100);
   haptic::HapticScene scene(b.mesh, b.config(40), opt);
   const int node = node_at(*b.mesh, {0.05, 0.05, 0.05});
   const Eigen::Vector3d depth(0, 0, -0.008);
-  haptic::ProbePath path;
-  path.origin = b.mesh->nodes[node];
-  path.direction = -Eigen::Vector3d::UnitZ();
-  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
-  path.signal.amplitude = 0.008;
-  path.signal.ramp_time = 0.3;
+  const haptic::ProbePath path = press_down(b.mesh->nodes[node], 0.008, 0.3);
   const haptic::HapticRecord r = haptic::run_haptic(scene, path, 3000);
   ASSERT_TRUE(scene.events().empty());
   // The contact stayed on the node (the bottom of the dimple).
@@ -126,16 +136,9 @@ TEST(HapticScene, PressAndHoldSettlesOnTheStaticSpringSolution) {
 
 TEST(HapticScene, SlidingCrossesTrianglesWithoutAForceJump) {
   Block b;
-  haptic::HapticOptions opt;
-  opt.probe_stiffness = 100;
-  haptic::HapticScene scene(b.mesh, b.config(40), opt);
-  haptic::ProbePath path;
+  haptic::HapticScene scene(b.mesh, b.config(40), spring(100));
+  haptic::ProbePath path = press_down({0.031, 0.052, 0.05}, 0.005, 0.2);
   path.kind = haptic::ProbePath::Kind::slide;
-  path.origin = Eigen::Vector3d(0.031, 0.052, 0.05);
-  path.direction = -Eigen::Vector3d::UnitZ();
-  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
-  path.signal.amplitude = 0.005;
-  path.signal.ramp_time = 0.2;
   path.slide_direction = Eigen::Vector3d::UnitX();
   path.slide_speed = 0.02;  // 2 cm/s: 3 cm (2.4 cells) in 1.5 s
   std::vector<int> triangles;
@@ -159,14 +162,8 @@ TEST(HapticScene, SlidingCrossesTrianglesWithoutAForceJump) {
 
 TEST(HapticScene, AFailurePastInversionIsReportedAndTheFramesGoOn) {
   Block b;
-  haptic::HapticOptions opt;
-  opt.probe_stiffness = 1e4;
-  haptic::HapticScene scene(b.mesh, b.config(10), opt);
-  haptic::ProbePath path;
-  path.origin = Eigen::Vector3d(0.05, 0.05, 0.05);
-  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
-  path.signal.amplitude = 0.2;  // four times the block's height
-  path.signal.ramp_time = 0.2;
+  haptic::HapticScene scene(b.mesh, b.config(10), spring(1e4));
+  const haptic::ProbePath path = press_down({0.05, 0.05, 0.05}, 0.2, 0.2);  // 4x the block's height
   const haptic::HapticRecord r = haptic::run_haptic(scene, path, 400);
   EXPECT_EQ(r.frames, 400);
   ASSERT_FALSE(scene.events().empty());

@@ -8,10 +8,7 @@ namespace softsim::haptic {
 
 namespace {
 
-Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key) {
-  const auto v = r.get_doubles(key, 3);
-  return Eigen::Vector3d(v[0], v[1], v[2]);
-}
+using hybrid::read_vec3;
 
 Eigen::Vector3d read_unit(const io::JsonReader& r, const std::string& key) {
   const Eigen::Vector3d v = read_vec3(r, key);

@@ -47,11 +47,15 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
 }
 
 void HapticScene::reset() {
+  back_to_rest();
+  frames_ = 0;
+  events_.clear();
+}
+
+void HapticScene::back_to_rest() {
   model_->reset();
   in_contact_ = false;
   contact_ = SurfacePoint();
-  frames_ = 0;
-  events_.clear();
 }
 
 void HapticScene::update_contact(const Eigen::Vector3d& probe, const double* u) {
@@ -95,11 +99,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
   } catch (const NumericalError& e) {
     // Keep answering the device: report, return the model to rest, and start the contact anew.
     events_.push_back({frames_ - 1, e.what()});
-    const long frames = frames_;
-    const auto events = std::move(events_);
-    reset();
-    frames_ = frames;
-    events_ = events;
+    back_to_rest();
     return Eigen::Vector3d::Zero();
   }
 }

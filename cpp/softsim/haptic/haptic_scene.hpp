@@ -62,6 +62,8 @@ class HapticScene {
 
  private:
   void update_contact(const Eigen::Vector3d& probe, const double* u);
+  // The model at rest and no contact; frames and events kept (recovery from a failure).
+  void back_to_rest();
 
   std::shared_ptr<const mesh::TetMesh> mesh_;
   HapticOptions options_;

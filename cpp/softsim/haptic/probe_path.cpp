@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <sstream>
+#include <string_view>
 
 #include "softsim/io/errors.hpp"
 
@@ -18,22 +18,33 @@ Eigen::Vector3d RecordedPath::at(double t) const {
   return (1 - s) * position[k - 1] + s * position[k];
 }
 
-bool parse_probe_line(std::string line, const std::string& where, double v[4]) {
-  const auto hash = line.find('#');
-  if (hash != std::string::npos) line.erase(hash);
-  if (line.find_first_not_of(" \t\r") == std::string::npos) return false;
-  std::istringstream fields(line);
-  std::string token;
+namespace {
+
+bool ends_token(char c) { return c == '\0' || c == '#' || c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+
+}  // namespace
+
+bool parse_probe_line(const char* line, const LineSource& where, double v[4]) {
   int n = 0;
-  while (fields >> token) {
-    if (n == 4) throw InputError(where + ": expected 4 numbers \"t x y z\", got more");
+  const char* p = line;
+  while (true) {
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') ++p;
+    if (*p == '\0' || *p == '#') break;
+    const char* end_of_token = p;
+    while (!ends_token(*end_of_token)) ++end_of_token;
+    const std::string_view token(p, static_cast<std::size_t>(end_of_token - p));
+    if (n == 4) throw InputError(where.name() + ": expected 4 numbers \"t x y z\", got more");
     char* end = nullptr;
-    v[n] = std::strtod(token.c_str(), &end);
-    if (end == token.c_str() || *end != '\0') throw InputError(where + ": expected a number, got \"" + token + "\"");
-    if (!std::isfinite(v[n])) throw InputError(where + ": expected a finite number, got \"" + token + "\"");
+    v[n] = std::strtod(p, &end);
+    if (end != end_of_token)
+      throw InputError(where.name() + ": expected a number, got \"" + std::string(token) + "\"");
+    if (!std::isfinite(v[n]))
+      throw InputError(where.name() + ": expected a finite number, got \"" + std::string(token) + "\"");
     ++n;
+    p = end_of_token;
   }
-  if (n != 4) throw InputError(where + ": expected 4 numbers \"t x y z\", got " + std::to_string(n));
+  if (n == 0) return false;
+  if (n != 4) throw InputError(where.name() + ": expected 4 numbers \"t x y z\", got " + std::to_string(n));
   return true;
 }
 
@@ -42,14 +53,14 @@ RecordedPath read_recorded_path(const std::string& path) {
   if (!in) throw InputError(path + ": cannot open the recorded probe trajectory");
   RecordedPath r;
   std::string line;
-  int line_no = 0;
+  const std::string prefix = path + ":";
+  LineSource where{prefix, 0};
   while (std::getline(in, line)) {
-    ++line_no;
+    ++where.number;
     double v[4];
-    const std::string where = path + ":" + std::to_string(line_no);
-    if (!parse_probe_line(line, where, v)) continue;
+    if (!parse_probe_line(line.c_str(), where, v)) continue;
     if (!r.time.empty() && !(v[0] > r.time.back()))
-      throw InputError(where + ": expected a time after " + std::to_string(r.time.back()) + " s (times must increase)");
+      throw InputError(where.name() + ": expected a time after " + std::to_string(r.time.back()) + " s (times must increase)");
     r.time.push_back(v[0]);
     r.position.emplace_back(v[1], v[2], v[3]);
   }

@@ -19,9 +19,17 @@ struct RecordedPath {
   Eigen::Vector3d at(double t) const;
 };
 
-// One line "t x y z" into v (comments after '#' removed). False for a blank line; InputError
-// naming `where` for anything else that is not four finite numbers.
-bool parse_probe_line(std::string line, const std::string& where, double v[4]);
+// Where a probe line came from, "<prefix><number>" (e.g. "stdin:12"), for an error message;
+// composed only when there is an error, so the live loop allocates nothing per frame.
+struct LineSource {
+  const std::string& prefix;
+  long number = 0;
+  std::string name() const { return prefix + std::to_string(number); }
+};
+
+// One line "t x y z" (NUL-terminated; '#' starts a comment) into v. False for a blank line;
+// InputError naming `where` for anything else that is not four finite numbers.
+bool parse_probe_line(const char* line, const LineSource& where, double v[4]);
 
 // Reads a recorded trajectory. InputError naming the file and line for a malformed line, a value
 // that is not finite, a time that does not increase, or an empty file.

@@ -23,12 +23,12 @@ using Clock = std::chrono::steady_clock;
 
 // One frame of the live loop: parse, step, format the answer into `answer`. False for a blank
 // message (nothing to answer).
-bool live_frame(HapticScene& scene, const std::string& message, const std::string& where, double& last_t,
+bool live_frame(HapticScene& scene, const char* message, const LineSource& where, double& last_t,
                 HapticRecord& record, Clock::time_point received, char (&answer)[160], int& length) {
   double v[4];
   if (!parse_probe_line(message, where, v)) return false;
   if (record.frames > 0 && !(v[0] > last_t))
-    throw InputError(where + ": expected a time after " + std::to_string(last_t) + " s (times must increase)");
+    throw InputError(where.name() + ": expected a time after " + std::to_string(last_t) + " s (times must increase)");
   last_t = v[0];
   const Eigen::Vector3d p(v[1], v[2], v[3]);
   const Eigen::Vector3d f = scene.frame(p);
@@ -57,15 +57,15 @@ HapticRecord serve_lines(HapticScene& scene, std::istream& in, std::ostream& out
   HapticRecord record;
   if (max_frames > 0) record.reserve(max_frames);
   std::string line;
-  long line_no = 0;
+  const std::string prefix = "stdin:";
+  LineSource where{prefix, 0};
   double last_t = 0;
   char answer[160];
   int length = 0;
   while ((max_frames == 0 || record.frames < max_frames) && std::getline(in, line)) {
     const auto received = Clock::now();
-    ++line_no;
-    if (!live_frame(scene, line, "stdin:" + std::to_string(line_no), last_t, record, received, answer, length))
-      continue;
+    ++where.number;
+    if (!live_frame(scene, line.c_str(), where, last_t, record, received, answer, length)) continue;
     out.write(answer, length);
     out.flush();
   }
@@ -97,7 +97,8 @@ HapticRecord serve_udp(HapticScene& scene, int port, long max_frames, double idl
   char answer[160];
   int length = 0;
   double last_t = 0;
-  long datagram = 0;
+  const std::string prefix = name + ": datagram ";
+  LineSource where{prefix, 0};
   while (max_frames == 0 || record.frames < max_frames) {
     sockaddr_in from{};
     socklen_t from_len = sizeof from;
@@ -111,13 +112,12 @@ HapticRecord serve_udp(HapticScene& scene, int port, long max_frames, double idl
       if (errno == EINTR) continue;
       throw InputError(name + ": receive failed: " + std::strerror(errno));
     }
-    ++datagram;
-    std::string message(buffer, static_cast<std::size_t>(n));
-    while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
-    if (message == "end") break;
-    if (!live_frame(scene, message, name + ": datagram " + std::to_string(datagram), last_t, record, received, answer,
-                    length))
-      continue;
+    ++where.number;
+    std::size_t len = static_cast<std::size_t>(n);
+    while (len > 0 && (buffer[len - 1] == '\n' || buffer[len - 1] == '\r')) --len;
+    buffer[len] = '\0';
+    if (std::strcmp(buffer, "end") == 0) break;
+    if (!live_frame(scene, buffer, where, last_t, record, received, answer, length)) continue;
     ::sendto(sock.fd(), answer, static_cast<std::size_t>(length), 0, reinterpret_cast<sockaddr*>(&from), from_len);
   }
   return record;

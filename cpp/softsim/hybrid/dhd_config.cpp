@@ -9,12 +9,12 @@
 
 namespace softsim::hybrid {
 
-namespace {
-
 Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key) {
   const auto v = r.get_doubles(key, 3);
   return Eigen::Vector3d(v[0], v[1], v[2]);
 }
+
+namespace {
 
 // Exactly one of set / nodes / nearest / sphere / box. `name` describes the selection.
 std::vector<int> read_selection(const io::JsonReader& r, const mesh::TetMesh& mesh, std::string& name) {

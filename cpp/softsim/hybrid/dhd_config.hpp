@@ -58,6 +58,9 @@ struct DhdConfig {
   BenchConfig bench;
 };
 
+// A 3-vector member [x, y, z] of a config object (the scene readers built on this one use it too).
+Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key);
+
 // The mesh path alone (the mesh must be loaded before the rest can be read).
 std::string read_mesh_path(const io::JsonReader& config);
 
