@@ -256,7 +256,7 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   c.static_solver = s->get_choice("kind", {"explicit", "static"}, "explicit") == "static";
   // Keys of the other solver kind are refused rather than silently ignored.
   const std::set<std::string> explicit_keys = {"steps", "dt", "safety_factor", "force_dt", "energy_interval",
-                                               "energy_growth_limit"};
+                                               "energy_growth_limit", "dt_check_interval"};
   const std::set<std::string> static_keys = {"increments", "max_iterations", "tolerance"};
   for (const auto& key : s->keys())
     if ((c.static_solver && explicit_keys.count(key)) || (!c.static_solver && static_keys.count(key)))
@@ -269,6 +269,10 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   e.safety_factor = s->get_positive("safety_factor", e.safety_factor);
   s->require(e.safety_factor <= 1.0, "safety_factor", "a factor in (0, 1]");
   e.force_dt = s->get_bool("force_dt", false);
+  e.dt_check_interval = s->get_int32("dt_check_interval", e.dt_check_interval);
+  s->require(e.dt_check_interval >= 0, "dt_check_interval", "a non-negative step count (0: no re-estimate)");
+  if (e.dt && s->has("dt_check_interval") && e.dt_check_interval > 0)
+    s->at("dt_check_interval").fail("no step re-estimate with a fixed \"dt\" (leave dt out for the automatic step)");
   e.energy_interval = s->get_int32("energy_interval", e.energy_interval);
   s->require(e.energy_interval >= 1, "energy_interval", "a positive step count");
   e.energy_growth_limit = s->get_positive("energy_growth_limit", e.energy_growth_limit);

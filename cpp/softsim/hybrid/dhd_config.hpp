@@ -23,6 +23,9 @@ struct ExplicitConfig {
   bool force_dt = false;
   int energy_interval = 100;
   double energy_growth_limit = 2.0;
+  // With the automatic step (no dt): steps between re-estimates of the critical step on the
+  // deformed mesh (0: never, the step of the undeformed mesh throughout).
+  int dt_check_interval = 10;
 };
 
 struct OutputConfig {
