@@ -522,3 +522,51 @@ TEST(Run, CantileverUnderGravityAtTheDefaultStepSettlesOnTheStaticSolution) {
   j["solver"] = {{"dt", 1e-4}, {"dt_check_interval", 10}};
   EXPECT_THROW(parse(j, m), InputError);
 }
+
+// ---- what a run says about itself, and where it reads its mesh (issue 25) ----
+
+TEST(App, MaterialFormIsRecordedAndMeshPathIsReadBesideTheConfig) {
+  const std::string exe = std::string(SOFTSIM_BIN_DIR) + "/dhd_sim";
+  if (!fs::exists(exe)) GTEST_SKIP() << "dhd_sim is not built";
+  Scratch s("paths");
+  fs::create_directories(s.dir / "scene");
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  io::Provenance prov;
+  prov.tool = "test";
+  io::write_artifact(s.path("scene/mesh.json"), io::kMeshSchema, io::kMeshSchemaVersion, prov, io::mesh_to_json(m));
+  // "mesh.json" beside the config, run from another working directory (the build tree's).
+  nlohmann::json cfg = {{"mesh", "mesh.json"},
+                        {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -0.001}}}}}}},
+                        {"solver", {{"kind", "static"}}}};
+  write_json(s.path("scene/run.json"), cfg);
+  ASSERT_EQ(run_dhd_sim(s.path("scene/run.json"), s.path("out.json")), 0);
+  const io::Artifact a = io::Artifact::read(s.path("out.json"), "dhd_result", 1);
+  // The neo-Hookean form is named, and so is the fact that the config left it to the default.
+  EXPECT_EQ(a.payload().at("material").at("model").as_string(), "neo_hookean_paper");
+  EXPECT_TRUE(a.payload().at("material").at("model_defaulted").raw().get<bool>());
+  cfg["material"] = {{"model", "neo_hookean_decoupled"}};
+  write_json(s.path("scene/run.json"), cfg);
+  ASSERT_EQ(run_dhd_sim(s.path("scene/run.json"), s.path("out2.json")), 0);
+  const io::Artifact b = io::Artifact::read(s.path("out2.json"), "dhd_result", 1);
+  EXPECT_EQ(b.payload().at("material").at("model").as_string(), "neo_hookean_decoupled");
+  EXPECT_FALSE(b.payload().at("material").at("model_defaulted").raw().get<bool>());
+
+  // A mesh in neither folder: exit 2, and the message names the field and the config's folder.
+  cfg["mesh"] = "no_such_mesh.json";
+  write_json(s.path("scene/bad.json"), cfg);
+  const std::string cmd = exe + " --config " + s.path("scene/bad.json") + " --out " + s.path("bad_out.json") + " 2> " +
+                          s.path("bad_err.txt");
+  EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 2);
+  const std::string err = io::read_text_file(s.path("bad_err.txt"));
+  EXPECT_NE(err.find("/mesh"), std::string::npos) << err;
+  EXPECT_NE(err.find((s.dir / "scene").string()), std::string::npos) << err;
+  EXPECT_NE(err.find("working directory"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(s.path("bad_out.json")));
+}
+
+TEST(Config, MaterialModelDefaultIsFlagged) {
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  EXPECT_TRUE(parse({{"mesh", "m"}}, m).model_defaulted);
+  EXPECT_TRUE(parse({{"mesh", "m"}, {"material", {{"E", 4000}}}}, m).model_defaulted);
+  EXPECT_FALSE(parse({{"mesh", "m"}, {"material", {{"model", "neo_hookean_paper"}}}}, m).model_defaulted);
+}

@@ -91,6 +91,7 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
   material::ElasticParameters p;
   material::NeoHookeanForm form = material::NeoHookeanForm::paper;
   if (auto m = cfg.optional("material")) {
+    c.model_defaulted = !m->has("model");
     c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "linear"}, "neo_hookean_paper");
     p.youngs_modulus = m->get_positive("E", p.youngs_modulus);
     p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
@@ -341,11 +342,11 @@ void read_bench(const io::JsonReader& cfg, DhdConfig& c) {
 
 }  // namespace
 
-std::string read_mesh_path(const io::JsonReader& config) { return config.get_string("mesh"); }
+std::string read_mesh_path(const io::JsonReader& config) { return config.get_input_path("mesh"); }
 
 DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) {
   DhdConfig c;
-  c.mesh_path = read_mesh_path(cfg);
+  c.mesh_path = cfg.get_string("mesh");  // as written (the mesh is loaded by the caller)
   read_material(cfg, c);
   if (auto d = cfg.optional("damping")) {
     c.damping_alpha = d->get_double("alpha", 0.0);

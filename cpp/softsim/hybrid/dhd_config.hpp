@@ -45,7 +45,8 @@ struct BenchConfig {
 
 struct DhdConfig {
   std::string mesh_path;
-  std::string model = "neo_hookean_paper";  // as written in the config
+  std::string model = "neo_hookean_paper";  // as written in the config, or the default
+  bool model_defaulted = true;               // material.model left out of the config
   bool linear_material = false;
   fem::Material material;
   double damping_alpha = 0;
@@ -61,7 +62,8 @@ struct DhdConfig {
   BenchConfig bench;
 };
 
-// The mesh path alone (the mesh must be loaded before the rest can be read).
+// The mesh path alone (the mesh must be loaded before the rest can be read): relative to the
+// config file's folder, or else to the working directory (io::JsonReader::get_input_path).
 std::string read_mesh_path(const io::JsonReader& config);
 
 // Reads the whole config (calls reject_unknown on every object). A strain partition reads its

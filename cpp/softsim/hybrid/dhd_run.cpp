@@ -68,6 +68,7 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                          {"linear_fraction", static_cast<double>(counts[0] + counts[2]) / kinds.size()}};
   const auto& m = c.material;
   p["material"] = {{"model", c.model},
+                   {"model_defaulted", c.model_defaulted},
                    {"E", m.elastic.youngs_modulus},
                    {"nu", m.elastic.poisson_ratio},
                    {"density", m.elastic.density},
