@@ -141,8 +141,8 @@ std::string JsonReader::get_input_path(const std::string& key) const {
   std::error_code ec;
   const fs::path cwd = fs::current_path(ec);
   at(key).fail("a file path relative to the config's folder \"" + (folder.empty() ? std::string(".") : folder.string()) +
-               "\" (or to the working directory \"" + (ec ? std::string(".") : cwd.string()) +
-               "\"), but no such file is in either");
+               "\" (or to the working directory \"" + (ec ? std::string(".") : cwd.string()) + "\"), but \"" + given +
+               "\" is in neither");
 }
 
 void JsonReader::fail(const std::string& expected) const {
