@@ -75,9 +75,18 @@ int main(int argc, char** argv) {
       progress = [&](int steps_done, double time) { progress_line.update(steps_done, time); };
     const hybrid::DhdRun run = hybrid::run_dhd_writing_vtu(mesh, config, progress);
     ctx.write(hybrid::kResultSchema, hybrid::kResultSchemaVersion, hybrid::result_payload(mesh, config, run));
-    if (run.explicit_result)
-      std::cerr << "dhd_sim: " << run.explicit_result->steps << " explicit steps of " << run.step.dt << " s (critical "
-                << run.critical.dt << " s), " << run.explicit_result->timing.steps_per_second << " steps/s\n";
+    if (config.model_defaulted)
+      std::cerr << "dhd_sim: note: material.model not given: the paper's neo-Hookean form (\"" << config.model
+                << "\"); CalculiX and Miller's TLED use \"neo_hookean_decoupled\"\n";
+    if (run.explicit_result) {
+      const auto& r = *run.explicit_result;
+      std::cerr << "dhd_sim: " << r.steps << " explicit steps of " << run.step.dt << " s (critical " << run.critical.dt
+                << " s)";
+      if (r.step_history.size() > 1)
+        std::cerr << ", re-estimated " << r.step_history.size() - 1 << " times on the deformed mesh down to "
+                  << r.step_history.back().dt << " s";
+      std::cerr << ", " << r.timing.steps_per_second << " steps/s\n";
+    }
     else
       std::cerr << "dhd_sim: static equilibrium in " << config.static_options.increments << " increments\n";
   });

@@ -389,15 +389,25 @@ TEST(App, ExitCodesAndArtifact) {
   EXPECT_EQ(a.payload().at("element_kind").size(), static_cast<std::size_t>(m.num_tets()));
   for (const char* f : {"final.vtu", "final_000000.vtu", "final_000025.vtu", "final_000050.vtu"})
     EXPECT_TRUE(fs::exists(s.path(f))) << f;
-  // The series lists each snapshot, by its name beside the .pvd, at its simulated time n dt.
+  // The series lists each snapshot, by its name beside the .pvd, at its simulated time: n dt
+  // at a constant step, the sum of the steps taken once the step is re-estimated (the sudden 10 %
+  // push compresses the top elements enough for that).
   const std::string pvd = io::read_text_file(s.path("final.pvd"));
   const double dt = a.payload().at("solver").get_double("dt");
+  const auto history = a.payload().at("solver").at("dt_history").raw();
+  ASSERT_GE(history.size(), 1u);
+  EXPECT_EQ(history[0][2].get<double>(), dt);
+  const auto time_at = [&](int step) {
+    std::size_t k = 0;
+    while (k + 1 < history.size() && history[k + 1][0].get<int>() <= step) ++k;
+    return history[k][1].get<double>() + (step - history[k][0].get<int>()) * history[k][2].get<double>();
+  };
   std::size_t at = 0;
   for (const int step : {0, 25, 50}) {
     at = pvd.find("<DataSet timestep=\"", at);
     ASSERT_NE(at, std::string::npos) << pvd;
     at += 19;
-    EXPECT_EQ(std::strtod(pvd.c_str() + at, nullptr), step * dt) << pvd;
+    EXPECT_EQ(std::strtod(pvd.c_str() + at, nullptr), time_at(step)) << pvd;
     char file[32];
     std::snprintf(file, sizeof file, "file=\"final_%06d.vtu\"", step);
     EXPECT_EQ(pvd.find(file, at), pvd.find("file=", at)) << pvd;
@@ -502,4 +512,128 @@ TEST(Scene, ConstraintsByNameProbeByPositionAndStaticConfigs) {
   hybrid::DhdScene still(m, parse(j, *m));
   EXPECT_THROW(still.step(1), InputError);
   EXPECT_EQ(still.solve_static().displacement.size(), 3u * m->num_nodes());
+}
+
+// ---- the explicit step under large deformation (issue 25) ----
+
+TEST(StableStep, DeformedEstimateFollowsTheGeometryOfNonlinearElementsOnly) {
+  const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
+  const double h0 = dynamics::critical_time_step(m, kPaper).dt;
+  const std::vector<char> all(m.num_tets(), 1), none(m.num_tets(), 0);
+  const dynamics::DeformedCriticalStep tled(m, all, kPaper), linear(m, none, kPaper);
+  std::vector<double> zero(3 * m.num_nodes(), 0.0);
+  EXPECT_NEAR(tled.at(zero.data()).dt, h0, 1e-12 * h0);
+  // Uniaxial compression by 20 % in z: the altitudes shrink, by at most the factor 0.8.
+  std::vector<double> squeeze(3 * m.num_nodes(), 0.0), stretch(3 * m.num_nodes(), 0.0), turn(3 * m.num_nodes(), 0.0);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    squeeze[3 * i + 2] = -0.2 * m.nodes[i].z();
+    stretch[3 * i + 2] = 0.2 * m.nodes[i].z();
+    const Eigen::Vector3d x = R * m.nodes[i] - m.nodes[i];
+    for (int k = 0; k < 3; ++k) turn[3 * i + k] = x[k];
+  }
+  const double squeezed = tled.at(squeeze.data()).dt;
+  EXPECT_LT(squeezed, 0.99 * h0);
+  EXPECT_GE(squeezed, 0.8 * h0 * (1 - 1e-12));
+  EXPECT_GE(tled.at(stretch.data()).dt, h0 * (1 - 1e-12));  // a stretch does not shorten it
+  EXPECT_NEAR(tled.at(turn.data()).dt, h0, 1e-9 * h0);      // a rigid rotation changes nothing
+  // Small-strain (and corotational) stiffness does not follow the deformation: nor does its limit.
+  EXPECT_EQ(linear.at(squeeze.data()).dt, h0);
+  // An inverted element leaves no positive step.
+  std::vector<double> flip(3 * m.num_nodes(), 0.0);
+  for (int i = 0; i < m.num_nodes(); ++i) flip[3 * i + 2] = -2.0 * m.nodes[i].z();
+  EXPECT_EQ(tled.at(flip.data()).dt, 0.0);
+}
+
+// A cantilever (10 × 2 × 2 cells, 0.1 m long) hanging under its own weight deflects by about 80 %
+// of its length. At the default automatic step (0.9 Δt_cr of the undeformed mesh) the bending
+// flattens the elements near the clamp until the step exceeds their limit; re-estimated on the
+// deformed mesh, the step shrinks in time and the damped run settles on the static solution.
+TEST(Run, CantileverUnderGravityAtTheDefaultStepSettlesOnTheStaticSolution) {
+  const auto m = cuboid(10, 2, 2, 0.1, 0.02, 0.02);
+  nlohmann::json j = {{"mesh", "m"},
+                      {"material", {{"E", 10000}, {"nu", 0.35}, {"density", 1000}}},
+                      {"damping", {{"alpha", 5.0}}},
+                      {"boundary", {{"fixed", {"x_min"}}, {"gravity", {0, 0, -9.81}}}},
+                      {"solver", {{"steps", 30000}}}};
+  const auto dynamic = hybrid::run_dhd(m, parse(j, m));
+  const auto& r = *dynamic.explicit_result;
+  ASSERT_GT(r.step_history.size(), 1u) << "the step was re-estimated";
+  EXPECT_EQ(r.step_history.front().dt, dynamic.step.dt);
+  for (std::size_t k = 1; k < r.step_history.size(); ++k) {
+    EXPECT_LT(r.step_history[k].dt, r.step_history[k - 1].dt);  // it only shrinks
+    EXPECT_GT(r.step_history[k].first_step, r.step_history[k - 1].first_step);
+  }
+  EXPECT_LT(r.time, r.steps * r.dt);
+
+  nlohmann::json st = j;
+  st.erase("damping");
+  st["solver"] = {{"kind", "static"}, {"increments", 20}};
+  const auto equilibrium = hybrid::run_dhd(m, parse(st, m));
+  const int tip = 10;  // node (10, 0, 0): the free end's lower edge
+  const Eigen::Vector3d u_dyn(&r.displacement[3 * tip]), u_st(&equilibrium.static_result->displacement[3 * tip]);
+  EXPECT_GT(u_st.norm(), 0.5 * 0.1) << "a large deflection";
+  // Settled: e^{−α t / 2} of the initial transient is below 1e-9 after t ≈ 17 s.
+  EXPECT_LT((u_dyn - u_st).norm(), 1e-7 * u_st.norm()) << u_dyn.transpose() << " vs " << u_st.transpose();
+
+  // Without the re-estimate the same run fails, and says it is the step that failed.
+  j["solver"]["dt_check_interval"] = 0;
+  try {
+    hybrid::run_dhd(m, parse(j, m));
+    ADD_FAILURE() << "the constant step survived";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("step-size failure"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("exceeds the critical step"), std::string::npos) << e.what();
+  }
+  // A fixed step has nothing to re-estimate.
+  j["solver"] = {{"dt", 1e-4}, {"dt_check_interval", 10}};
+  EXPECT_THROW(parse(j, m), InputError);
+}
+
+// ---- what a run says about itself, and where it reads its mesh (issue 25) ----
+
+TEST(App, MaterialFormIsRecordedAndMeshPathIsReadBesideTheConfig) {
+  const std::string exe = std::string(SOFTSIM_BIN_DIR) + "/dhd_sim";
+  if (!fs::exists(exe)) GTEST_SKIP() << "dhd_sim is not built";
+  Scratch s("paths");
+  fs::create_directories(s.dir / "scene");
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  io::Provenance prov;
+  prov.tool = "test";
+  io::write_artifact(s.path("scene/mesh.json"), io::kMeshSchema, io::kMeshSchemaVersion, prov, io::mesh_to_json(m));
+  // "mesh.json" beside the config, run from another working directory (the build tree's).
+  nlohmann::json cfg = {{"mesh", "mesh.json"},
+                        {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -0.001}}}}}}},
+                        {"solver", {{"kind", "static"}}}};
+  write_json(s.path("scene/run.json"), cfg);
+  ASSERT_EQ(run_dhd_sim(s.path("scene/run.json"), s.path("out.json")), 0);
+  const io::Artifact a = io::Artifact::read(s.path("out.json"), "dhd_result", 1);
+  // The neo-Hookean form is named, and so is the fact that the config left it to the default.
+  EXPECT_EQ(a.payload().at("material").at("model").as_string(), "neo_hookean_paper");
+  EXPECT_TRUE(a.payload().at("material").at("model_defaulted").raw().get<bool>());
+  cfg["material"] = {{"model", "neo_hookean_decoupled"}};
+  write_json(s.path("scene/run.json"), cfg);
+  ASSERT_EQ(run_dhd_sim(s.path("scene/run.json"), s.path("out2.json")), 0);
+  const io::Artifact b = io::Artifact::read(s.path("out2.json"), "dhd_result", 1);
+  EXPECT_EQ(b.payload().at("material").at("model").as_string(), "neo_hookean_decoupled");
+  EXPECT_FALSE(b.payload().at("material").at("model_defaulted").raw().get<bool>());
+
+  // A mesh in neither folder: exit 2, and the message names the field and the config's folder.
+  cfg["mesh"] = "no_such_mesh.json";
+  write_json(s.path("scene/bad.json"), cfg);
+  const std::string cmd = exe + " --config " + s.path("scene/bad.json") + " --out " + s.path("bad_out.json") + " 2> " +
+                          s.path("bad_err.txt");
+  EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 2);
+  const std::string err = io::read_text_file(s.path("bad_err.txt"));
+  EXPECT_NE(err.find("/mesh"), std::string::npos) << err;
+  EXPECT_NE(err.find((s.dir / "scene").string()), std::string::npos) << err;
+  EXPECT_NE(err.find("working directory"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(s.path("bad_out.json")));
+}
+
+TEST(Config, MaterialModelDefaultIsFlagged) {
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  EXPECT_TRUE(parse({{"mesh", "m"}}, m).model_defaulted);
+  EXPECT_TRUE(parse({{"mesh", "m"}, {"material", {{"E", 4000}}}}, m).model_defaulted);
+  EXPECT_FALSE(parse({{"mesh", "m"}, {"material", {{"model", "neo_hookean_paper"}}}}, m).model_defaulted);
 }

@@ -26,14 +26,15 @@ EnergySample ExplicitSolver::sample_energy(int n_done, const double* u_before, c
   // Time t_{n−1}, strain energy at u_{n−1}. The kinetic energy is the one the central-difference
   // scheme conserves exactly for a linear undamped system: ½ v⁻·M v⁺ with the half-step
   // velocities around t_{n−1}; `bound_kinetic` = ½ (|v⁻|²_M + |v⁺|²_M)/2 ≥ 0 for the growth check.
-  const double dt = opt_.dt;
+  // The steps before and after t_{n−1} (equal unless the step was re-estimated in between).
+  const double dt_before = step_size(n_done - 2), dt_after = step_size(n_done - 1);
   EnergySample s;
-  s.time = (n_done - 1) * dt;
+  s.time = time_at(n_done - 1);
   double kinetic = 0, bound = 0, gravity_work = 0;
   for (int i = 0; i < n_; ++i)
     for (int k = 0; k < 3; ++k) {
       const int q = 3 * i + k;
-      const double vm = (u_mid[q] - u_before[q]) / dt, vp = (u_after[q] - u_mid[q]) / dt;
+      const double vm = (u_mid[q] - u_before[q]) / dt_before, vp = (u_after[q] - u_mid[q]) / dt_after;
       kinetic += 0.5 * mass_[i] * vm * vp;
       bound += 0.25 * mass_[i] * (vm * vm + vp * vp);
       gravity_work += mass_[i] * scene_.gravity[k] * u_mid[q];

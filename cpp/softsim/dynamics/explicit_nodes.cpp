@@ -60,8 +60,11 @@ void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end
 // `f` is the internal force on node i that the update gathered.
 void ExplicitSolver::update_special(int i, int step, const double f[3], const double* up, const double* uc,
                                     double* un) {
-  const double dt = opt_.dt;
-  const double t = step * dt;
+  // t = t_step; the steps before and after it (equal but at a step-size transition).
+  const StepSegment& seg = segments_.back();
+  const double t = seg.time + (step - seg.first_step) * seg.dt;
+  const double dt = seg.dt;
+  const double dt_before = transition_ && step == seg.first_step ? step_size(step - 1) : dt;
   // Nodal loads: R enters eq. 33 as + A R. External work is booked on [t − Δt, t] with the
   // trapezoidal rule, ½ (R(t − Δt) + R(t)) · (u(t) − u(t − Δt)), the form the central-difference
   // energy balance takes.
@@ -72,7 +75,7 @@ void ExplicitSolver::update_special(int i, int step, const double f[3], const do
     for (int k = 0; k < 3; ++k)
       if (le.free[k]) un[3 * i + k] += A_[i] * r * load.force_per_node[k];
     if (step > 0) {
-      const double r_mean = 0.5 * (load.ramp.at(t - dt) + r);
+      const double r_mean = 0.5 * (load.ramp.at(t - dt_before) + r);
       double w = 0;
       for (int k = 0; k < 3; ++k)
         if (le.free[k]) w += r_mean * load.force_per_node[k] * (uc[3 * i + k] - up[3 * i + k]);
@@ -99,8 +102,13 @@ void ExplicitSolver::update_special(int i, int step, const double f[3], const do
     const double value = d.value * scene_.constraints[d.constraint].ramp.at(t + dt);
     if (moving_[d.constraint]) {
       const double m = mass_[i];
-      const double total =
-          m * (value - 2.0 * uc[q] + up[q]) / (dt * dt) + alpha * m * (value - up[q]) / (2.0 * dt) + f[d.component];
+      double total;
+      if (dt_before == dt) {
+        total = m * (value - 2.0 * uc[q] + up[q]) / (dt * dt) + alpha * m * (value - up[q]) / (2.0 * dt) + f[d.component];
+      } else {  // the variable-step form (central_difference.hpp)
+        const double v_after = (value - uc[q]) / dt, v_before = (uc[q] - up[q]) / dt_before;
+        total = m * (v_after - v_before) / (0.5 * (dt + dt_before)) + alpha * m * 0.5 * (v_after + v_before) + f[d.component];
+      }
       if (step > 0) dof_work_[e] += 0.5 * (dof_force_[e] + total) * (uc[q] - up[q]);
       dof_force_[e] = total;
     }

@@ -25,12 +25,6 @@ double seconds_since(Clock::time_point t0) {
 
 constexpr int kTimingStride = 8;
 
-std::string where(int step, double dt) {
-  std::ostringstream s;
-  s << "explicit step " << step << " (t = " << step * dt << " s)";
-  return s.str();
-}
-
 // The smallest J = det F over the whole set at u, and the (original) element it belongs to: a
 // full energy pass, for failure messages only.
 struct MinJ {
@@ -59,18 +53,18 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
   opt_.trajectory_interval = std::max(opt_.trajectory_interval, 1);
   for (int node : opt_.trajectory_nodes)
     if (node < 0 || node >= n_) throw InputError("output: trajectory node " + std::to_string(node) + " out of range");
+  if (opt_.adapt_step) {
+    if (!opt_.critical_step) throw std::invalid_argument("ExplicitSolver: adapt_step needs critical_step");
+    if (!(opt_.step_safety > 0 && opt_.step_safety <= 1.0))
+      throw InputError("solver: the safety factor must lie in (0, 1]");
+    opt_.step_check_interval = std::max(opt_.step_check_interval, 1);
+  }
 
   A_.resize(n_);
   B_.resize(n_);
   C_.resize(n_);
   Am_.resize(n_);
-  for (int i = 0; i < n_; ++i) {
-    const CentralDifference cd = central_difference(mass_[i], opt_.damping_alpha, opt_.dt);
-    A_[i] = cd.A;
-    B_[i] = cd.B;
-    C_[i] = cd.C;
-    Am_[i] = cd.A * mass_[i];
-  }
+  set_coefficients(opt_.dt, opt_.dt);
   gravity_ = scene_.gravity.squaredNorm() > 0;
 
   dofs_ = resolve_constraints(scene_, n_);
@@ -110,9 +104,62 @@ void ExplicitSolver::set_initial_state(std::vector<double> u0, std::vector<doubl
   v0_ = std::move(v0);
 }
 
+// The central-difference coefficients of 000 eq. 33 for a step of `dt_after` after one of
+// `dt_before` (the constant-step ones when equal).
+void ExplicitSolver::set_coefficients(double dt_before, double dt_after) {
+  for (int i = 0; i < n_; ++i) {
+    const CentralDifference cd = central_difference(mass_[i], opt_.damping_alpha, dt_before, dt_after);
+    A_[i] = cd.A;
+    B_[i] = cd.B;
+    C_[i] = cd.C;
+    Am_[i] = cd.A * mass_[i];
+  }
+}
+
+double ExplicitSolver::time_at(int step) const {
+  if (segments_.empty()) return step * opt_.dt;
+  auto it = segments_.rbegin();
+  while (it + 1 != segments_.rend() && it->first_step > step) ++it;
+  // With one segment (a constant step) this is step × dt exactly.
+  return it->time + (step - it->first_step) * it->dt;
+}
+
+double ExplicitSolver::step_size(int step) const {
+  if (segments_.empty()) return opt_.dt;
+  auto it = segments_.rbegin();
+  while (it + 1 != segments_.rend() && it->first_step > step) ++it;
+  return it->dt;
+}
+
+std::string ExplicitSolver::where(int step) const {
+  std::ostringstream s;
+  s << "explicit step " << step << " (t = " << time_at(step) << " s)";
+  return s.str();
+}
+
+// A failure at `step` whose step size exceeds the critical step of `u` (the last sound state) is
+// a step-size failure and is reported as one; otherwise `what` is reported as it is.
+void ExplicitSolver::fail_step_size(int step, const double* u, const std::string& what) const {
+  const double dt = step_size(step);
+  if (opt_.critical_step) {
+    const double critical = opt_.critical_step(u);
+    if (dt > critical) {
+      std::ostringstream msg;
+      msg << where(step) << ": step-size failure: the step " << dt << " s exceeds the critical step " << critical
+          << " s of the deformed mesh (000 eq. 34 on the current geometry)"
+          << (opt_.adapt_step ? ", which shrank faster than it was re-estimated (every " +
+                                    std::to_string(opt_.step_check_interval) + " steps)"
+                              : "")
+          << "; lower solver.safety_factor (or solver.dt). It showed as: " << what;
+      throw NumericalError(msg.str());
+    }
+  }
+  throw NumericalError(where(step) + ": " + what);
+}
+
 void ExplicitSolver::fail_inversion(int step, double J, int e) const {
   std::ostringstream msg;
-  msg << where(step, opt_.dt) << ": element " << e << " (" << fem::kind_name(elements_.kinds()[e])
+  msg << where(step) << ": element " << e << " (" << fem::kind_name(elements_.kinds()[e])
       << ") is inverted: J = " << J << " <= 0";
   throw NumericalError(msg.str());
 }
@@ -125,6 +172,9 @@ void ExplicitSolver::reset() {
 void ExplicitSolver::start() {
   const int n3 = 3 * n_;
   const double dt = opt_.dt;
+  if (segments_.size() > 1 || transition_) set_coefficients(dt, dt);
+  segments_.assign(1, StepSegment{0, 0.0, dt});
+  transition_ = false;
   scene_ = initial_scene_;
   dofs_ = resolve_constraints(scene_, n_);
   for (std::size_t c = 0; c < scene_.constraints.size(); ++c)
@@ -196,7 +246,6 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
   if (steps < 0) throw InputError("solver: the step count must not be negative");
   if (!started_) start();
   const int n3 = 3 * n_;
-  const double dt = opt_.dt;
   const int T = opt_.threads;
   const long long target = static_cast<long long>(n_done_) + steps;
   if (target > std::numeric_limits<int>::max()) throw InputError("solver: the step count exceeds the int range");
@@ -204,11 +253,22 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
   auto& buf = buf_;
   const auto t_loop = Clock::now();
   while (n_done_ < target) {
-    // Next stop: an energy sample (after steps 1, 1 + interval, ...), a snapshot, or the end.
+    // The one step from the previous step size to a new one is done; back to equal steps.
+    if (transition_ && n_done_ > segments_.back().first_step) {
+      set_coefficients(segments_.back().dt, segments_.back().dt);
+      transition_ = false;
+    }
+    // Next stop: an energy sample (after steps 1, 1 + interval, ...), a snapshot, a step
+    // re-estimate, the end of a step-size transition, or the end.
     // In 64 bits: with an interval near the int range the next multiple lies beyond it.
     long long stop = target;
     const long long ei = opt_.energy_interval;
     const long long n_done = n_done_;
+    if (transition_) stop = std::min(stop, n_done + 1);
+    if (opt_.adapt_step) {
+      const long long ci = opt_.step_check_interval;
+      stop = std::min(stop, (n_done / ci + 1) * ci);
+    }
     const long long next_sample = n_done < 1 ? 1 : ((n_done - 1) / ei + 1) * ei + 1;
     stop = std::min(stop, next_sample);
     if (opt_.steps > n_done) stop = std::min<long long>(stop, opt_.steps);
@@ -277,20 +337,30 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
     if (failed_step >= 0) {
       started_ = false;  // the state is no longer a solution: the next advance() starts over
       const double* u = buf[(failed_step + (failed_inversion ? 1 : 2)) % 3].data();
+      // The last sound state: u_{s−1} before an inversion found at u_s, u_s before a non-finite u_{s+1}.
+      const double* sound = buf[(failed_step + (failed_inversion ? 0 : 1)) % 3].data();
+      std::ostringstream msg;
       if (failed_inversion) {
         const MinJ inverted = min_j_element(elements_, u);
+        msg << "element " << inverted.element << " (" << fem::kind_name(elements_.kinds()[inverted.element])
+            << ") is inverted: J = " << inverted.j << " <= 0";
+        if (failed_step > 0) fail_step_size(failed_step, sound, msg.str());
         fail_inversion(failed_step, inverted.j, inverted.element);
       }
       int node = -1;
       for (int q = 0; q < n3 && node < 0; ++q)
         if (!std::isfinite(u[q])) node = q / 3;
-      std::ostringstream msg;
-      msg << where(failed_step, dt) << ": displacement of node " << node
-          << " is not finite (NaN or overflow); dt = " << dt << " s";
-      throw NumericalError(msg.str());
+      msg << "displacement of node " << node << " is not finite (NaN or overflow); dt = " << step_size(failed_step)
+          << " s";
+      fail_step_size(failed_step, sound, msg.str());
     }
     n_done_ = s_end;
     sample(snapshot);
+    if (opt_.adapt_step && n_done_ % opt_.step_check_interval == 0) {
+      const auto ts = Clock::now();
+      check_step();
+      sample_seconds_ += seconds_since(ts);
+    }
     if (progress) progress(n_done_, time());
   }
   loop_seconds_ += seconds_since(t_loop);
@@ -299,7 +369,7 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
 // The energy sample, checks and snapshot due after the steps done.
 void ExplicitSolver::sample(const SnapshotFn& snapshot) {
   const int n_done = n_done_;
-  const double dt = opt_.dt;
+  const double dt = step_size(n_done - 1);
   const int n3 = 3 * n_;
   auto& buf = buf_;
   const bool sample_due = (n_done - 1) % opt_.energy_interval == 0 || n_done == opt_.steps;
@@ -329,10 +399,10 @@ void ExplicitSolver::sample(const SnapshotFn& snapshot) {
     if (!(mechanical <= limit)) {
       started_ = false;
       std::ostringstream msg;
-      msg << where(n_done - 1, dt) << ": kinetic + strain energy " << mechanical << " J exceeds "
-          << opt_.energy_growth_limit << " x (initial energy + external work) = " << limit
-          << " J: the integration is unstable (dt = " << dt << " s)";
-      throw NumericalError(msg.str());
+      msg << "kinetic + strain energy " << mechanical << " J exceeds " << opt_.energy_growth_limit
+          << " x (initial energy + external work) = " << limit << " J: the integration is unstable (dt = " << dt
+          << " s)";
+      fail_step_size(n_done - 1, buf[n_done % 3].data(), msg.str());
     }
     sample_seconds_ += seconds_since(ts);
   }
@@ -341,7 +411,7 @@ void ExplicitSolver::sample(const SnapshotFn& snapshot) {
     snapshot_velocity_.resize(n3);
     velocity(snapshot_velocity_.data());
     const auto ts = Clock::now();
-    snapshot(n_done, n_done * dt, un, snapshot_velocity_);
+    snapshot(n_done, time(), un, snapshot_velocity_);
     sample_seconds_ += seconds_since(ts);
   }
 }
@@ -355,7 +425,8 @@ void ExplicitSolver::velocity(double* out) const {
   }
   const double* u = buf_[(n_done_ + 1) % 3].data();
   const double* before = buf_[n_done_ % 3].data();
-  for (int q = 0; q < n3; ++q) out[q] = (u[q] - before[q]) / opt_.dt;
+  const double dt = step_size(n_done_ - 1);
+  for (int q = 0; q < n3; ++q) out[q] = (u[q] - before[q]) / dt;
 }
 
 std::vector<Eigen::Vector3d> ExplicitSolver::reactions() {
@@ -438,6 +509,29 @@ void ExplicitSolver::set_applied_forces(const std::vector<AppliedForce>& forces)
     }
 }
 
+// The step re-estimate: once the step in use exceeds the critical step of the current state, the
+// next step becomes step_safety × that critical step (000 eq. 34 on the deformed mesh). The
+// next step is the transition from the old size to the new one (variable-step central
+// difference, see central_difference.hpp); equal steps follow.
+void ExplicitSolver::check_step() {
+  const double critical = opt_.critical_step(displacement());
+  const double dt_now = dt();
+  if (!(dt_now > critical)) return;
+  const double dt_new = opt_.step_safety * critical;
+  if (!(dt_new > 0)) {
+    started_ = false;
+    std::ostringstream msg;
+    msg << where(n_done_) << ": step-size failure: the critical step of the deformed mesh is " << critical
+        << " s (000 eq. 34 on the current geometry): an element is flat or inverted";
+    throw NumericalError(msg.str());
+  }
+  const double t = time();
+  if (segments_.back().first_step == n_done_) segments_.back() = StepSegment{n_done_, t, dt_new};
+  else segments_.push_back(StepSegment{n_done_, t, dt_new});
+  set_coefficients(step_size(n_done_ - 1), dt_new);
+  transition_ = true;
+}
+
 ExplicitTiming ExplicitSolver::timing() const {
   ExplicitTiming tm;
   tm.threads = opt_.threads;
@@ -464,7 +558,6 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot, const ProgressFn&
   ExplicitResult res;
   res.steps = opt_.steps;
   res.dt = dt;
-  res.time = opt_.steps * dt;
 
   // Recording buffers.
   // Sized in 64 bits (steps / 1 + 1 exceeds the int range); no clock without trajectories.
@@ -476,13 +569,8 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot, const ProgressFn&
     const int i = opt_.trajectory_nodes[j];
     res.trajectories[j][0] = Eigen::Vector3d(u0[3 * i], u0[3 * i + 1], u0[3 * i + 2]);
   }
-  for (std::size_t s = 0; s < n_traj_samples; ++s)
-    res.trajectory_time.push_back(static_cast<int>(s) * opt_.trajectory_interval * dt);
   const int n_probe_samples = opt_.steps > 0 ? (opt_.steps - 1) / opt_.trajectory_interval + 1 : 0;
-  if (scene_.has_probe) {
-    res.probe_force.assign(n_probe_samples, Eigen::Vector3d::Zero());
-    for (int s = 0; s < n_probe_samples; ++s) res.probe_time.push_back(s * opt_.trajectory_interval * dt);
-  }
+  if (scene_.has_probe) res.probe_force.assign(n_probe_samples, Eigen::Vector3d::Zero());
   trajectories_ = &res.trajectories;
   probe_force_ = scene_.has_probe ? &res.probe_force : nullptr;
   struct ClearTargets {
@@ -495,6 +583,13 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot, const ProgressFn&
 
   if (snapshot && opt_.snapshot_interval > 0) snapshot(0, 0.0, buf_[1], v_start_);
   advance(opt_.steps, snapshot, progress);
+  // Sample times once the step sizes are known.
+  for (std::size_t s = 0; s < n_traj_samples; ++s)
+    res.trajectory_time.push_back(time_at(static_cast<int>(s) * opt_.trajectory_interval));
+  if (scene_.has_probe)
+    for (int s = 0; s < n_probe_samples; ++s) res.probe_time.push_back(time_at(s * opt_.trajectory_interval));
+  res.time = time();
+  res.step_history = segments_;
 
   res.displacement.assign(displacement(), displacement() + n3);
   res.velocity.resize(n3);

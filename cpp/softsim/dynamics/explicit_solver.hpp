@@ -12,9 +12,15 @@
 // happens; a non-finite displacement in the step it appears; an inverted linear element and
 // energy growth (kinetic + strain energy above `energy_growth_limit` × (initial energy +
 // external work)) at every energy sample. Each throws NumericalError naming the step, the
-// quantity and the limit.
+// quantity and the limit; with a known critical step (ExplicitOptions::critical_step) one whose
+// step exceeds the critical step of the last sound state says it is a step-size failure.
+//
+// Variable step: with `adapt_step` the step is re-estimated on the deformed mesh and shrinks
+// when needed (see ExplicitOptions); the step change is the variable-step central difference
+// (central_difference.hpp), and time() is then the sum of the steps taken.
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,6 +40,22 @@ struct ExplicitOptions {
   std::vector<int> trajectory_nodes;
   int trajectory_interval = 1;
   int snapshot_interval = 0;  // 0: no snapshots
+  // The critical step of the current state (000 eq. 34 on the deformed mesh, see
+  // DeformedCriticalStep); empty: none known. With it, a failure whose step exceeds the critical
+  // step of the last sound state is reported as a step-size failure, and with `adapt_step` the
+  // step is re-estimated every `step_check_interval` steps: once the step in use exceeds the
+  // current critical step, it becomes `step_safety` × that step (it only ever shrinks).
+  std::function<double(const double* u)> critical_step;
+  bool adapt_step = false;
+  double step_safety = 0.9;
+  int step_check_interval = 10;
+};
+
+// One run of equal steps: from step `first_step` (at `time`) on, each step lasts `dt`.
+struct StepSegment {
+  int first_step = 0;
+  double time = 0;
+  double dt = 0;
 };
 
 struct EnergySample {
@@ -68,8 +90,9 @@ struct ExplicitTiming {
 
 struct ExplicitResult {
   int steps = 0;
-  double dt = 0;
-  double time = 0;                   // steps × dt
+  double dt = 0;                     // the first step
+  double time = 0;                   // simulated time after `steps` steps (steps × dt at a constant step)
+  std::vector<StepSegment> step_history;  // one entry per step size used, the first at step 0
   std::vector<double> displacement;  // u(time), 3 per node
   std::vector<double> velocity;      // (u(time) − u(time − dt)) / dt
   std::vector<EnergySample> energies;
@@ -124,8 +147,15 @@ class ExplicitSolver {
   // state is undefined: reset() before stepping again.
   void advance(int steps, const SnapshotFn& snapshot = {}, const ProgressFn& progress = {});
   int steps_done() const { return n_done_; }
-  double time() const { return n_done_ * opt_.dt; }
-  double dt() const { return opt_.dt; }
+  double time() const { return time_at(n_done_); }
+  // The step in use from now on (options().dt unless the step was re-estimated).
+  double dt() const { return segments_.empty() ? opt_.dt : segments_.back().dt; }
+  // Time after `step` steps, and the length of step `step` (from t_step to t_{step+1}), for the
+  // steps since the last reset (the current step size beyond them).
+  double time_at(int step) const;
+  double step_size(int step) const;
+  // The step sizes used since the last reset.
+  const std::vector<StepSegment>& step_history() const { return segments_; }
   int num_nodes() const { return n_; }
   const ExplicitOptions& options() const { return opt_; }
   const Scene& scene() const { return scene_; }
@@ -180,6 +210,10 @@ class ExplicitSolver {
   void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
                     double* un, double& check);
   void update_special(int i, int step, const double f[3], const double* up, const double* uc, double* un);
+  void set_coefficients(double dt_before, double dt_after);
+  void check_step();
+  std::string where(int step) const;
+  [[noreturn]] void fail_step_size(int step, const double* u, const std::string& what) const;
   EnergySample sample_energy(int n_done, const double* u_before, const double* u_mid, const double* u_after,
                              double& bound_kinetic, double& min_j, int& min_j_element);
   double external_work(const double* u_mid) const;
@@ -227,6 +261,11 @@ class ExplicitSolver {
   std::vector<double> v_start_;  // the initial velocity as imposed (constrained components zero)
   bool started_ = false;
   int n_done_ = 0;
+  // Step sizes since the reset; the last segment is the current one. While `transition_`, the
+  // coefficients are those of the step from the previous size to the current one (step
+  // segments_.back().first_step).
+  std::vector<StepSegment> segments_;
+  bool transition_ = false;
   std::vector<EnergySample> energies_;
   double initial_energy_ = 0, initial_bound_ = 0;
   std::vector<ThreadSlot> slots_;

@@ -1,6 +1,8 @@
 #include "softsim/dynamics/stable_step.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 #include "softsim/io/errors.hpp"
 #include "softsim/mesh/quality.hpp"
@@ -15,6 +17,43 @@ CriticalStep critical_time_step(const mesh::TetMesh& mesh, const material::Elast
     if (h < c.min_altitude) c.min_altitude = h;
   }
   c.wave_speed = material::dilatational_wave_speed(p);
+  c.dt = c.min_altitude / c.wave_speed;  // 000 eq. 34
+  return c;
+}
+
+DeformedCriticalStep::DeformedCriticalStep(const mesh::TetMesh& mesh, std::vector<char> follows,
+                                           const material::ElasticParameters& p)
+    : mesh_(&mesh), wave_speed_(material::dilatational_wave_speed(p)) {
+  if (static_cast<int>(follows.size()) != mesh.num_tets())
+    throw std::invalid_argument("DeformedCriticalStep: one flag per tetrahedron");
+  for (int e = 0; e < mesh.num_tets(); ++e) {
+    if (follows[e]) deforming_.push_back(e);
+    else fixed_altitude_ = std::min(fixed_altitude_, mesh::tet_quality(mesh, e).min_altitude);
+  }
+}
+
+CriticalStep DeformedCriticalStep::at(const double* u) const {
+  CriticalStep c;
+  c.min_altitude = fixed_altitude_;
+  const auto& nodes = mesh_->nodes;
+  for (int e : deforming_) {
+    const auto& t = mesh_->tets[e];
+    Eigen::Vector3d x[4];
+    for (int a = 0; a < 4; ++a) x[a] = nodes[t[a]] + Eigen::Vector3d(u[3 * t[a]], u[3 * t[a] + 1], u[3 * t[a] + 2]);
+    const double six_v = (x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0]));
+    // Largest face area (twice it), over the four faces.
+    double max_twice_area = 0;
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Vector3d& p = x[(a + 1) % 4];
+      const Eigen::Vector3d& q = x[(a + 2) % 4];
+      const Eigen::Vector3d& r = x[(a + 3) % 4];
+      max_twice_area = std::max(max_twice_area, (q - p).cross(r - p).norm());
+    }
+    // 3V / A = (6V) / (2A); an inverted or flat element has no positive altitude.
+    const double h = six_v > 0 && max_twice_area > 0 ? six_v / max_twice_area : 0.0;
+    c.min_altitude = std::min(c.min_altitude, h);
+  }
+  c.wave_speed = wave_speed_;
   c.dt = c.min_altitude / c.wave_speed;  // 000 eq. 34
   return c;
 }

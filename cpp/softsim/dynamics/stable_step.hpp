@@ -3,6 +3,7 @@
 // (3V / largest face area) and c the longitudinal wave speed (000 eq. 35), and the choice of
 // the step actually used.
 #include <optional>
+#include <vector>
 
 #include "softsim/material/elastic.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
@@ -16,6 +17,25 @@ struct CriticalStep {
 };
 
 CriticalStep critical_time_step(const mesh::TetMesh& mesh, const material::ElasticParameters& p);
+
+// 000 eq. 34 on the deformed mesh, for re-estimating the step during a run: the smallest
+// altitude of the current geometry X + u over the elements whose stiffness follows the
+// deformation (TLED and ANP: `follows[e]` true) and the smallest reference altitude over the
+// others (small-strain and corotational elements keep their reference stiffness, and with it
+// their reference limit), over the reference wave speed c (000 eq. 35). An element flattened by
+// the deformation shortens the step in proportion; an inverted one gives a limit of zero.
+class DeformedCriticalStep {
+ public:
+  DeformedCriticalStep(const mesh::TetMesh& mesh, std::vector<char> follows, const material::ElasticParameters& p);
+  // Δt_cr at displacement `u` (3 per node); `min_altitude` and `wave_speed` as in CriticalStep.
+  CriticalStep at(const double* u) const;
+
+ private:
+  const mesh::TetMesh* mesh_;
+  std::vector<int> deforming_;  // elements whose altitude is re-measured
+  double fixed_altitude_ = 1e300;  // smallest reference altitude of the others
+  double wave_speed_ = 0;
+};
 
 struct StepChoice {
   double dt = 0;

@@ -91,6 +91,7 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
   material::ElasticParameters p;
   material::NeoHookeanForm form = material::NeoHookeanForm::paper;
   if (auto m = cfg.optional("material")) {
+    c.model_defaulted = !m->has("model");
     c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "linear"}, "neo_hookean_paper");
     p.youngs_modulus = m->get_positive("E", p.youngs_modulus);
     p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
@@ -256,7 +257,7 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   c.static_solver = s->get_choice("kind", {"explicit", "static"}, "explicit") == "static";
   // Keys of the other solver kind are refused rather than silently ignored.
   const std::set<std::string> explicit_keys = {"steps", "dt", "safety_factor", "force_dt", "energy_interval",
-                                               "energy_growth_limit"};
+                                               "energy_growth_limit", "dt_check_interval"};
   const std::set<std::string> static_keys = {"increments", "max_iterations", "tolerance"};
   for (const auto& key : s->keys())
     if ((c.static_solver && explicit_keys.count(key)) || (!c.static_solver && static_keys.count(key)))
@@ -269,6 +270,10 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   e.safety_factor = s->get_positive("safety_factor", e.safety_factor);
   s->require(e.safety_factor <= 1.0, "safety_factor", "a factor in (0, 1]");
   e.force_dt = s->get_bool("force_dt", false);
+  e.dt_check_interval = s->get_int32("dt_check_interval", e.dt_check_interval);
+  s->require(e.dt_check_interval >= 0, "dt_check_interval", "a non-negative step count (0: no re-estimate)");
+  if (e.dt && s->has("dt_check_interval") && e.dt_check_interval > 0)
+    s->at("dt_check_interval").fail("no step re-estimate with a fixed \"dt\" (leave dt out for the automatic step)");
   e.energy_interval = s->get_int32("energy_interval", e.energy_interval);
   s->require(e.energy_interval >= 1, "energy_interval", "a positive step count");
   e.energy_growth_limit = s->get_positive("energy_growth_limit", e.energy_growth_limit);
@@ -337,11 +342,11 @@ void read_bench(const io::JsonReader& cfg, DhdConfig& c) {
 
 }  // namespace
 
-std::string read_mesh_path(const io::JsonReader& config) { return config.get_string("mesh"); }
+std::string read_mesh_path(const io::JsonReader& config) { return config.get_input_path("mesh"); }
 
 DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) {
   DhdConfig c;
-  c.mesh_path = read_mesh_path(cfg);
+  c.mesh_path = cfg.get_string("mesh");  // as written (the mesh is loaded by the caller)
   read_material(cfg, c);
   if (auto d = cfg.optional("damping")) {
     c.damping_alpha = d->get_double("alpha", 0.0);

@@ -23,6 +23,9 @@ struct ExplicitConfig {
   bool force_dt = false;
   int energy_interval = 100;
   double energy_growth_limit = 2.0;
+  // With the automatic step (no dt): steps between re-estimates of the critical step on the
+  // deformed mesh (0: never, the step of the undeformed mesh throughout).
+  int dt_check_interval = 10;
 };
 
 struct OutputConfig {
@@ -42,7 +45,8 @@ struct BenchConfig {
 
 struct DhdConfig {
   std::string mesh_path;
-  std::string model = "neo_hookean_paper";  // as written in the config
+  std::string model = "neo_hookean_paper";  // as written in the config, or the default
+  bool model_defaulted = true;               // material.model left out of the config
   bool linear_material = false;
   fem::Material material;
   double damping_alpha = 0;
@@ -61,7 +65,8 @@ struct DhdConfig {
 // A 3-vector member [x, y, z] of a config object (the scene readers built on this one use it too).
 Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key);
 
-// The mesh path alone (the mesh must be loaded before the rest can be read).
+// The mesh path alone (the mesh must be loaded before the rest can be read): relative to the
+// config file's folder, or else to the working directory (io::JsonReader::get_input_path).
 std::string read_mesh_path(const io::JsonReader& config);
 
 // Reads the whole config (calls reject_unknown on every object). A strain partition reads its

@@ -79,6 +79,7 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
   p["element_counts"] = element_counts;
   const auto& m = c.material;
   p["material"] = {{"model", c.model},
+                   {"model_defaulted", c.model_defaulted},
                    {"E", m.elastic.youngs_modulus},
                    {"nu", m.elastic.poisson_ratio},
                    {"density", m.elastic.density},
@@ -110,6 +111,10 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
     return p;
   }
   const auto& r = *run.explicit_result;
+  // The step sizes used: [first step, time (s), dt (s)] per size, one entry at a constant step.
+  nlohmann::json dt_history = nlohmann::json::array();
+  for (const auto& seg : r.step_history) dt_history.push_back({seg.first_step, seg.time, seg.dt});
+  const int step_checks = c.explicit_solver.dt ? 0 : c.explicit_solver.dt_check_interval;
   p["solver"] = {{"kind", "explicit"},
                  {"method", "central_difference"},
                  {"steps", r.steps},
@@ -119,6 +124,9 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                  {"wave_speed", run.critical.wave_speed},
                  {"safety_factor", c.explicit_solver.dt ? r.dt / run.critical.dt : c.explicit_solver.safety_factor},
                  {"dt_forced", run.step.forced},
+                 {"dt_check_interval", step_checks},
+                 {"dt_final", r.step_history.empty() ? r.dt : r.step_history.back().dt},
+                 {"dt_history", dt_history},
                  {"time", r.time},
                  {"damping_alpha", c.damping_alpha}};
   nlohmann::json en = {{"time", nlohmann::json::array()},

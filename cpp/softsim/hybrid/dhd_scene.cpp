@@ -36,9 +36,21 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     step_ = dynamics::choose_time_step(critical_, config_.explicit_solver.dt, config_.explicit_solver.safety_factor,
                                        config_.explicit_solver.force_dt);
     elements_ = std::make_unique<fem::ElementSet>(*mesh_, kinds_, config_.material);
+    // The critical step of the deformed mesh: TLED and ANP stiffness follows the deformation,
+    // small-strain and corotational stiffness does not.
+    std::vector<char> follows(kinds_.size());
+    for (std::size_t e = 0; e < kinds_.size(); ++e)
+      follows[e] = kinds_[e] == fem::ElementKind::tled || kinds_[e] == fem::ElementKind::anp;
+    deformed_step_ =
+        std::make_unique<dynamics::DeformedCriticalStep>(*mesh_, std::move(follows), config_.material.elastic);
+    dynamics::ExplicitOptions options = explicit_options(config_, step_.dt);
+    options.critical_step = [d = deformed_step_.get()](const double* u) { return d->at(u).dt; };
+    // The automatic step is re-estimated as the mesh deforms; a requested one is kept.
+    options.adapt_step = !config_.explicit_solver.dt && config_.explicit_solver.dt_check_interval > 0;
+    options.step_safety = config_.explicit_solver.safety_factor;
+    options.step_check_interval = std::max(config_.explicit_solver.dt_check_interval, 1);
     solver_ = std::make_unique<dynamics::ExplicitSolver>(
-        *elements_, dynamics::lumped_mass(*mesh_, config_.material.elastic.density), config_.scene,
-        explicit_options(config_, step_.dt));
+        *elements_, dynamics::lumped_mass(*mesh_, config_.material.elastic.density), config_.scene, options);
   }
   setup_seconds_ = std::chrono::duration<double>(Clock::now() - t0).count();
 }

@@ -44,7 +44,7 @@ class DhdScene {
   void reset() { solver().reset(); }
   double time() const { return solver().time(); }
   int steps_done() const { return solver().steps_done(); }
-  double dt() const { return step_.dt; }
+  double dt() const { return solver().dt(); }  // the step in use (it shrinks if re-estimated)
   int num_nodes() const { return mesh_->num_nodes(); }
   // u(t), 3 per node, in place: valid until the next step() or reset().
   const double* displacement() const { return solver().displacement(); }
@@ -76,6 +76,7 @@ class DhdScene {
   std::vector<fem::ElementKind> kinds_;
   dynamics::CriticalStep critical_;
   dynamics::StepChoice step_;
+  std::unique_ptr<dynamics::DeformedCriticalStep> deformed_step_;
   std::unique_ptr<fem::ElementSet> elements_;
   std::unique_ptr<dynamics::ExplicitSolver> solver_;
   double setup_seconds_ = 0;

@@ -123,6 +123,28 @@ std::string JsonReader::child_pointer(const std::string& key) const {
 
 std::string JsonReader::describe() const { return describe_json(*value_); }
 
+std::string JsonReader::get_input_path(const std::string& key) const {
+  namespace fs = std::filesystem;
+  const std::string given = get_string(key);
+  if (given.empty()) at(key).fail("a file path");
+  const fs::path p(given);
+  if (p.is_absolute()) {
+    if (!fs::exists(p)) at(key).fail("an existing file (no file at that absolute path)");
+    return given;
+  }
+  const fs::path folder = fs::path(file_).parent_path();
+  if (!folder.empty()) {
+    const fs::path beside = folder / p;
+    if (fs::exists(beside)) return beside.lexically_normal().string();
+  }
+  if (fs::exists(p)) return given;
+  std::error_code ec;
+  const fs::path cwd = fs::current_path(ec);
+  at(key).fail("a file path relative to the config's folder \"" + (folder.empty() ? std::string(".") : folder.string()) +
+               "\" (or to the working directory \"" + (ec ? std::string(".") : cwd.string()) + "\"), but \"" + given +
+               "\" is in neither");
+}
+
 void JsonReader::fail(const std::string& expected) const {
   throw InputError(file_ + ": " + pointer() + ": expected " + expected + ", got " + describe());
 }

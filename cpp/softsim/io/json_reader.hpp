@@ -71,6 +71,13 @@ class JsonReader {
   std::vector<double> get_doubles(const std::string& key) const;
   std::vector<double> get_doubles(const std::string& key, std::size_t expected_size) const;
   std::vector<std::int64_t> get_ints(const std::string& key) const;
+  // The path of an input file named by string member `key`: an absolute path as it is; a
+  // relative one against the folder of the file this reader came from (as most tools read
+  // their configs), or, where no such file is there, against the working directory (configs
+  // written before paths were resolved this way, and configs written into a scratch folder
+  // with paths relative to where the tool runs). No file in either place: an InputError naming
+  // the member and both folders.
+  std::string get_input_path(const std::string& key) const;
 
   // Range check of a value already read from member `key`.
   void require(bool ok, const std::string& key, const std::string& expected) const;
