@@ -1,5 +1,6 @@
 """Command line of the pipeline:
   run EXPERIMENT|all [--stage NAME] [--force] [-j N] [--executor local|dask-local | --scheduler ADDRESS]
+      [--timings FILE]
   list
   clean [--results | --stale]
   bench [--filter REGEX]
@@ -7,6 +8,7 @@ Exit codes: 0 ok, 1 a run failed, 2 a malformed experiment or command line."""
 import argparse
 import shutil
 import sys
+import time
 
 from pipeline import experiment as experiment_mod
 from pipeline import report_md
@@ -65,20 +67,29 @@ def cmd_run(args) -> int:
                 for exp in experiments]
     # A stopped pipeline stops what it started (its tools, a local cluster's workers).
     procs.stop_with_children(on_stop=cache.clean_stale)
+    started = time.time()
     executor = make_executor(args.executor, args.scheduler, args.jobs)
     try:
         if executor.name != "local":
             print(f"pipeline: {executor.describe()}", flush=True)
         executor.check_workers(_code_of(selected))
         _report_stale(executor.clean_stale())
+        ready = time.time()
         ok = True
         with progress_bar(sum(len(run_ids) for _, run_ids in selected)) as bar:
             runner = Runner(force=args.force, force_stages=[args.stage] if args.stage else [],
                             echo=_progress_echo(bar), progress=bar, executor=executor)
             ok = runner.run_all(selected)
         _report_stale(executor.clean_stale())
+        ran = time.time()
     finally:
         executor.close()
+    if args.timings:
+        from pipeline.artifacts import write_json_atomic
+        write_json_atomic(args.timings, {
+            "executor": executor.name, "slots": executor.slots, "startup_s": round(ready - started, 3),
+            "runs_s": round(ran - ready, 3), "total_s": round(time.time() - started, 3),
+            "runs": runner.timings()})
     write_manifest(runner, experiments, complete=args.experiment == "all" and not args.stage)
     report_md.assemble()
     counts = {}
@@ -152,6 +163,8 @@ def main(argv) -> int:
     p_run.add_argument("--scheduler", metavar="ADDRESS",
                        help="a running Dask scheduler, tcp://HOST:PORT or its scheduler file: runs execute on "
                             "its workers, which must share this repository, build and cache")
+    p_run.add_argument("--timings", metavar="FILE",
+                       help="write every run's wall time and, where it executed, its own time (JSON)")
     p_run.set_defaults(func=cmd_run)
     p_list = sub.add_parser("list", help="list the experiments and their stages")
     p_list.set_defaults(func=cmd_list)

@@ -104,6 +104,7 @@ class DaskExecutor:
             self.close()
             raise ClusterMismatch(f"the Dask scheduler {self.address} has no worker after {wait_s:.0f} s") from None
         workers_info = self.client.scheduler_info()["workers"]
+        self.name = "dask-local" if self.cluster is not None else "dask"
         self.slots = jobs or sum(w.get("nthreads", 1) for w in workers_info.values())
         self.exclusive_remote = any(w.get("resources", {}).get(EXCLUSIVE) for w in workers_info.values())
 

@@ -92,8 +92,10 @@ class Outcome:
         self.status = status          # ran | cached | failed | skipped
         self.key = key
         self.artifact = artifact
-        self.seconds = seconds
+        self.seconds = seconds        # wall time as the client saw it
         self.message = message
+        self.exec_seconds = None      # ran: the run's own time where it executed
+        self.where = ""               # ran: host:pid that executed it
 
 
 class Runner:
@@ -192,7 +194,9 @@ class Runner:
         result = self.executor.execute(spec, run.exclusive)
         if not result.ok:
             raise RunFailed(run.id, result.code, result.message)
-        return Outcome(run, "ran", key, artifact, time.time() - start)
+        outcome = Outcome(run, "ran", key, artifact, time.time() - start)
+        outcome.exec_seconds, outcome.where = result.seconds, f"{result.host}:{result.pid}"
+        return outcome
 
     # ---------------------------------------------------------------- scheduling
     def run_experiment(self, exp, run_ids: List[str]) -> bool:
@@ -276,6 +280,14 @@ class Runner:
             return Outcome(run, "failed", "", None, 0, f"exit {e.code}: {e.message}")
         except Exception as e:  # a report that raised, a lost worker: show it, keep going with the rest
             return Outcome(run, "failed", "", None, 0, f"{type(e).__name__}: {e}")
+
+    def timings(self) -> List[dict]:
+        """Every finished run's times: the client's wall time and, for a run that executed, its
+        own time where it ran; the difference is what scheduling it cost."""
+        return [{"experiment": name, "run": rid, "kind": o.run.kind, "target": o.run.target,
+                 "status": o.status, "wall_s": round(o.seconds, 4),
+                 "exec_s": None if o.exec_seconds is None else round(o.exec_seconds, 4), "where": o.where}
+                for (name, rid), o in self.outcomes.items()]
 
     # ---------------------------------------------------------------- manifest
     def manifest_entries(self, exp) -> List[dict]:
