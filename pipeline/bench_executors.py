@@ -19,7 +19,7 @@ from pipeline import experiment as experiment_mod
 from pipeline.paths import RESULTS, ROOT
 
 EXECUTORS = {"local pool": ["--executor", "local"], "dask-local": ["--executor", "dask-local"]}
-WORKERS = (2, 8, 32, 128)
+WORKERS = (2, 8, 16, 32)
 
 
 def measure(name: str, flags, jobs: int) -> dict:
@@ -43,12 +43,15 @@ def summarise(doc: dict) -> dict:
             "overhead_median_ms": 1000 * statistics.median(overhead)}
 
 
-def largest_sweep():
+def largest_sweep(exclusive: bool = False):
+    """(experiment, stage, runs) of the largest swept stage; exclusive=False: of those that may
+    run in parallel (an `exclusive` timing sweep runs one run at a time on any executor)."""
     best = ("", "", 0)
     for name in experiment_mod.list_experiments():
         exp = experiment_mod.load(name)
         for stage, ids in exp.stage_runs.items():
-            if len(ids) > best[2] and exp.runs[ids[0]].kind != "report":
+            run = exp.runs[ids[0]]
+            if len(ids) > best[2] and run.kind != "report" and run.exclusive == exclusive:
                 best = (name, stage, len(ids))
     return best
 
@@ -58,23 +61,35 @@ def main(argv=None) -> int:
     parser.add_argument("experiments", nargs="+")
     parser.add_argument("-j", "--jobs", type=int, default=2)
     parser.add_argument("--repeat", type=int, default=1)
+    parser.add_argument("--report-only", action="store_true",
+                        help="rewrite executors.md from executors.csv without measuring")
     args = parser.parse_args(argv)
+    out = RESULTS / "bench"
+    if args.report_only:
+        import csv
+        with open(out / "executors.csv") as f:
+            rows = [{k: (v if k in ("experiment", "executor", "load") else float(v)) for k, v in r.items()}
+                    for r in csv.DictReader(f)]
+        (out / "executors.md").write_text(report(rows, args.jobs))
+        return 0
     rows = []
     for name in args.experiments:
         for rep in range(args.repeat):
             for label, flags in EXECUTORS.items():
+                load = os.getloadavg()[0]
                 s = summarise(measure(name, flags, args.jobs))
-                rows.append({"experiment": name, "executor": label, "repeat": rep + 1, **s})
+                load = f"{load:.1f}-{os.getloadavg()[0]:.1f}"
+                rows.append({"experiment": name, "executor": label, "repeat": rep + 1, "load": load, **s})
                 print(f"{name} {label} #{rep + 1}: {s['total_s']:.1f} s, overhead {s['overhead_mean_ms']:.0f} ms/run",
                       flush=True)
-    out = RESULTS / "bench"
     out.mkdir(parents=True, exist_ok=True)
-    keys = ["experiment", "executor", "repeat", "runs", "total_s", "startup_s", "runs_s", "exec_sum_s",
+    keys = ["experiment", "executor", "repeat", "load", "runs", "total_s", "startup_s", "runs_s", "exec_sum_s",
             "exec_mean_s", "overhead_mean_ms", "overhead_median_ms"]
     with open(out / "executors.csv", "w") as f:
         f.write(",".join(keys) + "\n")
         for r in rows:
             f.write(",".join(f"{r[k]:.3f}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n")
+    # (load: the machine's 1-minute load average before and after the measurement)
     (out / "executors.md").write_text(report(rows, args.jobs))
     return 0
 
@@ -87,30 +102,37 @@ def report(rows, jobs: int) -> str:
              "its wall time as the client saw it minus its own time where it executed (the worker's "
              "`run_spec`: tool start to artifact published). Start-up = from the command's start to the "
              "first run (the Dask cluster's start and the workers' check).", "",
-             "| experiment | executor | runs | wall s | start-up s | runs s | Σ run time s | mean run s | overhead/run ms (mean, median) |",
-             "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+             "| experiment | executor | load avg | runs | wall s | start-up s | runs s | Σ run time s | mean run s | overhead/run ms (mean, median) |",
+             "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for r in rows:
-        lines.append(f"| {r['experiment']} | {r['executor']} | {r['runs']} | {r['total_s']:.1f} | {r['startup_s']:.1f} | "
+        lines.append(f"| {r['experiment']} | {r['executor']} | {r.get('load', '')} | {r['runs']:.0f} | {r['total_s']:.1f} | {r['startup_s']:.1f} | "
                      f"{r['runs_s']:.1f} | {r['exec_sum_s']:.1f} | {r['exec_mean_s']:.2f} | "
                      f"{r['overhead_mean_ms']:.0f}, {r['overhead_median_ms']:.0f} |")
     dask = [r for r in rows if r["executor"] == "dask-local"]
     local = [r for r in rows if r["executor"] == "local pool"]
     exp, stage, count = largest_sweep()
-    t_run = statistics.mean(r["exec_mean_s"] for r in dask)
+    x_exp, x_stage, x_count = largest_sweep(exclusive=True)
+    measured = ", ".join(sorted({r["experiment"] for r in rows}))
+    t_run = statistics.mean(r["exec_mean_s"] for r in rows)
     o_dask = statistics.mean(r["overhead_mean_ms"] for r in dask) / 1000
     o_local = statistics.mean(r["overhead_mean_ms"] for r in local) / 1000
     startup = statistics.mean(r["startup_s"] for r in dask)
-    lines += ["", "## Estimate for a cluster (an estimate, not a measurement)", "",
-              f"The largest sweep is `{exp}`/`{stage}`: {count} independent runs. With the measured mean run "
-              f"time t = {t_run:.2f} s and Dask overhead o = {1000 * o_dask:.0f} ms per run (local pool: "
+    lines += ["", "The machine is shared (the load average column: 2 cores, other work beside ours), so the "
+              "wall times carry that noise: compare the overhead per run, which is measured run by run, "
+              "more than the totals.", "",
+              "## Estimate for a cluster (an estimate, not a measurement)", "",
+              f"The largest sweep that may run in parallel is `{exp}`/`{stage}`: {count} independent runs "
+              f"(the larger `{x_exp}`/`{x_stage}`, {x_count} runs, is an `exclusive` timing sweep: one run at "
+              "a time on any executor, so a cluster does not shorten it). Taking the mean run time measured "
+              f"on {measured} (both executors) as its run time, t = {t_run:.2f} s, and the Dask overhead o = {1000 * o_dask:.0f} ms per run (local pool: "
               f"{1000 * o_local:.0f} ms), N workers of one core take about ⌈{count}/N⌉·(t + o) + start-up "
               f"({startup:.1f} s here; on a cluster the workers are already running, so it is the check alone). "
               "This assumes the cluster's cores run a run as fast as this machine's, runs of equal length "
               "and a shared filesystem that keeps up; reports and key hashing stay on the client and are "
               "not in it.", "",
-              "| workers N | estimated sweep time s | speed-up over the 2-core local pool |", "| ---: | ---: | ---: |"]
+              "| workers N | estimated sweep time s (runs only) | speed-up over the 2-core local pool |", "| ---: | ---: | ---: |"]
     base = math.ceil(count / 2) * (t_run + o_local)
-    for n in WORKERS:
+    for n in sorted(set(WORKERS) | {count}):
         est = math.ceil(count / n) * (t_run + o_dask)
         lines.append(f"| {n} | {est:.1f} | {base / est:.1f} × |")
     lines += ["", f"Beyond N = {count} workers this sweep gains nothing: each run is one process on one core. "

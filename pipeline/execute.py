@@ -45,12 +45,14 @@ class RunResult:
     pid: int = 0
 
 
-def run_spec(spec: RunSpec) -> RunResult:
-    """Executes one tool or python run and publishes its artifact atomically into the cache."""
+def run_spec(spec: RunSpec, check_code: bool = True) -> RunResult:
+    """Executes one tool or python run and publishes its artifact atomically into the cache.
+    check_code: first check that this process sees the code the client keyed the run with
+    (needless where the client itself runs it)."""
     start = time.time()
     where = dict(host=socket.gethostname(), pid=os.getpid())
     from pipeline.runner import code_hash  # the same function the client keyed with
-    seen = code_hash(spec.kind, spec.target)
+    seen = code_hash(spec.kind, spec.target) if check_code else spec.code_hash
     if seen != spec.code_hash:
         return RunResult(False, 2, f"this worker ({where['host']}, pid {where['pid']}) sees other code for "
                          f"{spec.target} than the client (code hash {seen[:12]} vs {spec.code_hash[:12]}): "

@@ -177,10 +177,19 @@ def test_worker_with_another_binary_is_refused_and_a_matching_one_runs(tmp_path)
         assert not (Path(env["PIPELINE_CACHE"]) / "artifacts" / "mesher").exists() or \
             not any((Path(env["PIPELINE_CACHE"]) / "artifacts" / "mesher").iterdir())
         cluster.stop(bad)
-        cluster.worker(env)
+        good = cluster.worker(env)
+        # A timing run: this worker offers no `exclusive` resource, so it runs on the client.
+        doc = json.loads(json.dumps(SMALL))
+        doc["stages"]["timing"] = {"tool": "mesher", "exclusive": True, "config": {
+            "source": {"kind": "cuboid", "cells": [3, 1, 1], "size": [0.01, 0.01, 0.01]}}}
+        env = env_for(tmp_path, "dask", doc)
         address = json.loads(cluster.file.read_text())["address"]
-        ok = run_pipeline(env, "run", "t", "--scheduler", address)
+        ok = run_pipeline(env, "run", "t", "--scheduler", address, "--timings", str(tmp_path / "t.json"))
         assert ok.returncode == 0, ok.stdout + ok.stderr + cluster.log.read_text()[-3000:]
-        assert "pipeline: 5 ran" in ok.stdout, ok.stdout
+        assert "pipeline: 6 ran" in ok.stdout, ok.stdout
+        where = {r["run"]: int(r["where"].split(":")[-1]) for r in
+                 json.loads((tmp_path / "t.json").read_text())["runs"] if r["kind"] == "tool"}
+        assert {where[f"cube#{i}"] for i in range(4)} == {good.pid}
+        assert where["timing"] != good.pid
     finally:
         cluster.close()
