@@ -84,12 +84,13 @@ def kill_descendants(grace: float = 2.0) -> list:
             except (ProcessLookupError, PermissionError):
                 pass
         deadline = time.time() + grace
-        while sig == signal.SIGTERM and time.time() < deadline and any(pid_alive(p) and not _zombie(p) for p in pids):
+        while sig == signal.SIGTERM and time.time() < deadline and not all(exited(p) for p in pids):
             time.sleep(0.05)
     return pids
 
 
-def _zombie(pid: int) -> bool:
+def exited(pid: int) -> bool:
+    """Whether the process has exited (a zombie, waiting for its parent to reap it, has)."""
     try:
         text = Path(f"/proc/{pid}/stat").read_text()
     except OSError:

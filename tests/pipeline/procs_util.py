@@ -2,7 +2,7 @@
 import time
 from pathlib import Path
 
-from pipeline.procs import descendants
+from pipeline.procs import descendants, exited as gone  # noqa: F401 (for the tests)
 
 
 def comm(pid: int) -> str:
@@ -25,3 +25,24 @@ def wait_until(condition, timeout: float, step: float = 0.02):
         time.sleep(step)
         value = condition()
     return value
+
+
+def parent_of(pid: int) -> int:
+    text = Path(f"/proc/{pid}/stat").read_text()
+    return int(text[text.rfind(")") + 2:].split()[1])
+
+
+def signal_in_flight(proc, tool: str, sig, target=lambda proc, pids: pids[0]):
+    """Waits until a `tool` process runs below `proc`, sends `sig` to target(proc, those pids),
+    and waits for `proc` to end: (stdout, stderr, the tool pids seen)."""
+    import os
+    try:
+        pids = wait_until(lambda: children_named(proc.pid, tool), timeout=60)
+        assert pids, f"no {tool} started"
+        os.kill(target(proc, pids), sig)
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    return stdout, stderr, pids

@@ -9,13 +9,12 @@ import shutil
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
 from conftest import ROOT, run_pipeline, tool
-from procs_util import children_named, wait_until
+from procs_util import gone, parent_of, signal_in_flight, wait_until
 
 pytest.importorskip("distributed")
 
@@ -63,12 +62,18 @@ def leftovers(env) -> list:
     return [str(p) for p in cache.rglob("*") if p.is_file() and (".tmp." in p.name or "staging" in p.parts)]
 
 
-def test_local_cluster_gives_the_local_pool_artifacts_and_skips_on_second_run(tmp_path):
+def local_run(tmp_path, doc):
+    """The experiment through the local pool: the reference, and the environment of a second
+    cache for the same experiment."""
     tool("mesher")
-    local = env_for(tmp_path, "local", SMALL)
+    local = env_for(tmp_path, "local", doc)
     r = run_pipeline(local, "run", "t", "-j", "2")
     assert r.returncode == 0, r.stdout + r.stderr
-    dask = env_for(tmp_path, "dask", SMALL)
+    return local, env_for(tmp_path, "dask", doc)
+
+
+def test_local_cluster_gives_the_local_pool_artifacts_and_skips_on_second_run(tmp_path):
+    local, dask = local_run(tmp_path, SMALL)
     first = run_pipeline(dask, "run", "t", "--executor", "dask-local", "-j", "2")
     assert first.returncode == 0, first.stdout + first.stderr
     assert "local Dask cluster" in first.stdout and "pipeline: 5 ran" in first.stdout, first.stdout
@@ -84,39 +89,18 @@ def test_local_cluster_gives_the_local_pool_artifacts_and_skips_on_second_run(tm
 
 
 def test_worker_killed_mid_run_is_retried_and_results_are_identical(tmp_path):
-    tool("mesher")
-    local = env_for(tmp_path, "local", SLOW)
-    r = run_pipeline(local, "run", "t", "-j", "2")
-    assert r.returncode == 0, r.stdout + r.stderr
-    dask = env_for(tmp_path, "dask", SLOW)
+    local, dask = local_run(tmp_path, SLOW)
     proc = subprocess.Popen([sys.executable, "-m", "pipeline", "run", "t", "--executor", "dask-local", "-j", "2"],
                             cwd=ROOT, env=dask, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        # A mesher in flight: its parent is the worker process running it.
-        running = wait_until(lambda: children_named(proc.pid, "mesher"), timeout=60)
-        assert running, "no mesher run started"
-        victim_tool = running[0]
-        worker = int(Path(f"/proc/{victim_tool}/stat").read_text().rsplit(")", 1)[1].split()[1])
-        os.kill(worker, signal.SIGKILL)
-        stdout, stderr = proc.communicate(timeout=120)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.communicate()
+    # A mesher in flight: its parent is the worker process running it.
+    stdout, stderr, meshers = signal_in_flight(proc, "mesher", signal.SIGKILL, lambda _, pids: parent_of(pids[0]))
     assert proc.returncode == 0, stdout + stderr
     assert "pipeline: 3 ran" in stdout, stdout
     # The killed worker's tool died with it (no orphan writing into the cache) ...
-    assert wait_until(lambda: not Path(f"/proc/{victim_tool}").exists() or _zombie(victim_tool), timeout=10)
+    assert wait_until(lambda: gone(meshers[0]), timeout=10)
     # ... nothing half-written stays, and the results equal a clean local run.
     assert leftovers(dask) == []
     assert outputs(dask) == outputs(local)
-
-
-def _zombie(pid):
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] == "Z"
-    except OSError:
-        return True
 
 
 class Cluster:

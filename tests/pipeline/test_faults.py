@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT, run_pipeline, tool
-from procs_util import children_named, wait_until
+from procs_util import gone, signal_in_flight, wait_until
 
 # One mesher run of about a second.
 SLOW = {"stages": {"cube": {"tool": "mesher", "config": {
@@ -37,14 +37,6 @@ def start(env, *args):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
-def gone(pid):
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except OSError:
-        return True
-    return state == "Z"
-
-
 def half_written(env):
     cache = Path(env["PIPELINE_CACHE"])
     return [p for p in cache.rglob("*") if p.is_file() and (".tmp." in p.name or "staging" in p.parts)]
@@ -61,14 +53,7 @@ def test_stopped_pipeline_stops_its_tools(pipeline_env, sig):
     tool("dhd_sim")
     write(pipeline_env, "t", LONG)
     proc = start(pipeline_env, "run", "t")
-    try:
-        sims = wait_until(lambda: children_named(proc.pid, "dhd_sim"), timeout=30)
-        assert sims, "no dhd_sim started"
-        os.kill(proc.pid, sig)
-        proc.communicate(timeout=30)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
+    _, _, sims = signal_in_flight(proc, "dhd_sim", sig, lambda proc, _: proc.pid)
     # The tool does not outlive its leader (and so cannot write into the cache afterwards).
     assert wait_until(lambda: all(gone(p) for p in sims), timeout=3), sims
     if sig == signal.SIGTERM:
@@ -85,14 +70,7 @@ def test_killed_tool_leaves_nothing_half_written(pipeline_env):
     tool("mesher")
     write(pipeline_env, "t", SLOW)
     proc = start(pipeline_env, "run", "t")
-    try:
-        meshers = wait_until(lambda: children_named(proc.pid, "mesher"), timeout=30)
-        assert meshers, "no mesher started"
-        os.kill(meshers[0], signal.SIGKILL)
-        stdout, stderr = proc.communicate(timeout=60)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
+    stdout, stderr, _ = signal_in_flight(proc, "mesher", signal.SIGKILL)
     assert proc.returncode == 1 and "FAILED cube: exit -9" in stdout, stdout + stderr
     assert half_written(pipeline_env) == []
     assert not any((Path(pipeline_env["PIPELINE_CACHE"]) / "artifacts").rglob("*.json"))
