@@ -2,7 +2,9 @@
 import time
 from pathlib import Path
 
-from pipeline.procs import descendants, exited as gone  # noqa: F401 (for the tests)
+from pipeline.procs import descendants, exited
+
+gone = exited  # whether a process has exited (a zombie has)
 
 
 def comm(pid: int) -> str:
