@@ -10,6 +10,7 @@ import os
 import socket
 import subprocess
 import time
+import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Optional
@@ -57,7 +58,8 @@ def run_spec(spec: RunSpec, check_code: bool = True) -> RunResult:
         return RunResult(False, 2, f"this worker ({where['host']}, pid {where['pid']}) sees other code for "
                          f"{spec.target} than the client (code hash {seen[:12]} vs {spec.code_hash[:12]}): "
                          "workers must share the client's repository and build", **where)
-    staged = cache.staging_dir() / Path(spec.artifact).name
+    # Unique per call: the same key may run twice at once, in two experiments or two threads.
+    staged = cache.staging_dir() / f"{uuid.uuid4().hex[:12]}.{Path(spec.artifact).name}"
     artifact = Path(spec.artifact)
     try:
         if spec.kind == "tool":

@@ -124,3 +124,15 @@ def test_independent_experiments_overlap(pipeline_env):
     r = run_pipeline(pipeline_env, "run", "all", "--force")
     lines = [l for l in r.stdout.splitlines() if l.startswith("[")]
     assert lines[0].startswith("[a 1/1]") and lines[1].startswith("[b 1/1]"), r.stdout
+
+
+def test_same_key_in_two_experiments_at_once_leaves_one_valid_entry(pipeline_env):
+    tool("mesher")
+    write(pipeline_env, "a", SLOW)
+    write(pipeline_env, "b", SLOW)
+    r = run_pipeline(pipeline_env, "run", "all", "-j", "2")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "[a 1/1] ran cube" in r.stdout and "[b 1/1] ran cube" in r.stdout, r.stdout
+    entries = list((Path(pipeline_env["PIPELINE_CACHE"]) / "artifacts").rglob("*.json"))
+    assert len(entries) == 1 and json.loads(entries[0].read_text())["schema"]["name"]
+    assert half_written(pipeline_env) == []
