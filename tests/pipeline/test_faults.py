@@ -111,12 +111,18 @@ def test_stale_temporary_files_are_reported_and_removed(pipeline_env):
     assert not cache.exists()
 
 
-def test_independent_experiments_overlap(pipeline_env):
+def run_two(env, a, b):
+    """Experiments a and b, both at once (-j 2)."""
     tool("mesher")
-    write(pipeline_env, "a", SLOW)
-    write(pipeline_env, "b", QUICK)
-    r = run_pipeline(pipeline_env, "run", "all", "-j", "2")
+    write(env, "a", a)
+    write(env, "b", b)
+    r = run_pipeline(env, "run", "all", "-j", "2")
     assert r.returncode == 0, r.stdout + r.stderr
+    return r
+
+
+def test_independent_experiments_overlap(pipeline_env):
+    r = run_two(pipeline_env, SLOW, QUICK)
     lines = [l for l in r.stdout.splitlines() if l.startswith("[")]
     # b's quick run started beside a's slow one, so it finished first.
     assert lines[0].startswith("[b 1/1] ran cube") and lines[1].startswith("[a 1/1] ran cube"), r.stdout
@@ -127,11 +133,7 @@ def test_independent_experiments_overlap(pipeline_env):
 
 
 def test_same_key_in_two_experiments_at_once_leaves_one_valid_entry(pipeline_env):
-    tool("mesher")
-    write(pipeline_env, "a", SLOW)
-    write(pipeline_env, "b", SLOW)
-    r = run_pipeline(pipeline_env, "run", "all", "-j", "2")
-    assert r.returncode == 0, r.stdout + r.stderr
+    r = run_two(pipeline_env, SLOW, SLOW)
     assert "[a 1/1] ran cube" in r.stdout and "[b 1/1] ran cube" in r.stdout, r.stdout
     entries = list((Path(pipeline_env["PIPELINE_CACHE"]) / "artifacts").rglob("*.json"))
     assert len(entries) == 1 and json.loads(entries[0].read_text())["schema"]["name"]
