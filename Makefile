@@ -3,6 +3,9 @@ PYTHON ?= /usr/bin/python3
 BUILD  ?= build
 JOBS   ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+# Extra flags of `pipeline run` for reproduce, e.g. PIPELINE_FLAGS="--executor dask-local" or
+# PIPELINE_FLAGS="--scheduler tcp://HOST:8786 -j 256" (a later -j wins over JOBS)
+PIPELINE_FLAGS ?=
 
 .PHONY: all setup configure build test reproduce bench fuzz test-sanitize clean
 
@@ -22,7 +25,7 @@ test: build
 	@$(PYTHON) -m pytest -q tests/pipeline
 
 reproduce: build
-	@$(PYTHON) -m pipeline run all -j $(JOBS)
+	@$(PYTHON) -m pipeline run all -j $(JOBS) $(PIPELINE_FLAGS)
 
 bench: build
 	@$(PYTHON) -m pipeline bench

@@ -1,12 +1,14 @@
 """Command line of the pipeline:
-  run EXPERIMENT|all [--stage NAME] [--force] [-j N]
+  run EXPERIMENT|all [--stage NAME] [--force] [-j N] [--executor local|dask-local | --scheduler ADDRESS]
+      [--timings FILE]
   list
-  clean [--results]
+  clean [--results | --stale]
   bench [--filter REGEX]
 Exit codes: 0 ok, 1 a run failed, 2 a malformed experiment or command line."""
 import argparse
 import shutil
 import sys
+import time
 
 from pipeline import experiment as experiment_mod
 from pipeline import report_md
@@ -35,7 +37,26 @@ def progress_bar(total: int, stream=None):
                 dynamic_ncols=True)
 
 
+def _code_of(selected) -> dict:
+    """(kind, target) -> code hash of every tool and python stage the selection runs (what a
+    Dask worker must see the same); one that cannot be hashed fails later, at its run."""
+    from pipeline.errors import RunFailed
+    from pipeline.runner import code_hash
+    code = {}
+    for exp, run_ids in selected:
+        for rid in run_ids:
+            run = exp.runs[rid]
+            if run.kind != "report" and (run.kind, run.target) not in code:
+                try:
+                    code[(run.kind, run.target)] = code_hash(run.kind, run.target)
+                except RunFailed:
+                    pass
+    return code
+
+
 def cmd_run(args) -> int:
+    from pipeline import cache, procs
+    from pipeline.executors import make_executor
     from pipeline.runner import Runner, write_manifest
 
     names = experiment_mod.list_experiments() if args.experiment == "all" else [args.experiment]
@@ -44,12 +65,31 @@ def cmd_run(args) -> int:
     experiments = [experiment_mod.load(n) for n in names]
     selected = [(exp, experiment_mod.closure(exp, args.stage) if args.stage else list(exp.runs))
                 for exp in experiments]
-    ok = True
-    with progress_bar(sum(len(run_ids) for _, run_ids in selected)) as bar:
-        runner = Runner(jobs=args.jobs, force=args.force, force_stages=[args.stage] if args.stage else [],
-                        echo=_progress_echo(bar), progress=bar)
-        for exp, run_ids in selected:
-            ok = runner.run_experiment(exp, run_ids) and ok
+    # A stopped pipeline stops what it started (its tools, a local cluster's workers).
+    procs.stop_with_children(on_stop=cache.clean_stale)
+    started = time.time()
+    executor = make_executor(args.executor, args.scheduler, args.jobs)
+    try:
+        if executor.name != "local":
+            print(f"pipeline: {executor.describe()}", flush=True)
+        executor.check_workers(_code_of(selected))
+        _report_stale(executor.clean_stale())
+        ready = time.time()
+        ok = True
+        with progress_bar(sum(len(run_ids) for _, run_ids in selected)) as bar:
+            runner = Runner(force=args.force, force_stages=[args.stage] if args.stage else [],
+                            echo=_progress_echo(bar), progress=bar, executor=executor)
+            ok = runner.run_all(selected)
+        _report_stale(executor.clean_stale())
+        ran = time.time()
+    finally:
+        executor.close()
+    if args.timings:
+        from pipeline.artifacts import write_json_atomic
+        write_json_atomic(args.timings, {
+            "executor": executor.name, "slots": executor.slots, "startup_s": round(ready - started, 3),
+            "runs_s": round(ran - ready, 3), "total_s": round(time.time() - started, 3),
+            "runs": runner.timings()})
     write_manifest(runner, experiments, complete=args.experiment == "all" and not args.stage)
     report_md.assemble()
     counts = {}
@@ -57,6 +97,12 @@ def cmd_run(args) -> int:
         counts[o.status] = counts.get(o.status, 0) + 1
     print("pipeline: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items())), flush=True)
     return 0 if ok else 1
+
+
+def _report_stale(counted) -> None:
+    from pipeline.cache import describe
+    if counted[0]:
+        print(f"pipeline: removed {describe(*counted)}", flush=True)
 
 
 def cmd_list(_args) -> int:
@@ -71,6 +117,16 @@ def cmd_list(_args) -> int:
 
 
 def cmd_clean(args) -> int:
+    from pipeline import cache
+    stale = cache.stale_entries()
+    if stale:
+        print(f"pipeline: the cache holds {cache.describe(len(stale), sum(n for _, n in stale))}:")
+        for path, nbytes in stale:
+            print(f"  {path} ({nbytes / 1e6:.1f} MB)")
+    if args.stale:
+        count, size = cache.clean_stale()
+        print(f"pipeline: removed {cache.describe(count, size)}; kept the rest of the cache")
+        return 0
     shutil.rmtree(CACHE, ignore_errors=True)
     print("pipeline: removed the run cache")
     if args.results:
@@ -97,12 +153,25 @@ def main(argv) -> int:
     p_run.add_argument("experiment", help="an experiment name (experiments/NAME.json) or all")
     p_run.add_argument("--stage", help="rerun this stage (its dependencies come from the cache, or run first)")
     p_run.add_argument("--force", action="store_true", help="rerun every selected run")
-    p_run.add_argument("-j", "--jobs", type=int, default=1, help="parallel runs (default 1)")
+    p_run.add_argument("-j", "--jobs", type=int, default=None,
+                       help="parallel runs (default 1); with --executor dask-local the number of worker "
+                            "processes (default: the CPU count); with --scheduler at most this many runs "
+                            "at a time (default: the cluster's worker threads)")
+    p_run.add_argument("--executor", choices=["local", "dask-local", "dask"], default="local",
+                       help="where runs execute: this process's pool (default), a local Dask cluster of -j "
+                            "worker processes, or the Dask cluster of --scheduler")
+    p_run.add_argument("--scheduler", metavar="ADDRESS",
+                       help="a running Dask scheduler, tcp://HOST:PORT or its scheduler file: runs execute on "
+                            "its workers, which must share this repository, build and cache")
+    p_run.add_argument("--timings", metavar="FILE",
+                       help="write every run's wall time and, where it executed, its own time (JSON)")
     p_run.set_defaults(func=cmd_run)
     p_list = sub.add_parser("list", help="list the experiments and their stages")
     p_list.set_defaults(func=cmd_list)
     p_clean = sub.add_parser("clean", help="remove the run cache")
     p_clean.add_argument("--results", action="store_true", help="also remove results/")
+    p_clean.add_argument("--stale", action="store_true",
+                         help="remove only the temporary files of dead writers, keep the cache")
     p_clean.set_defaults(func=cmd_clean)
     p_bench = sub.add_parser("bench", help="run the Google Benchmark executables")
     p_bench.add_argument("--filter", default="", help="benchmark name regex")

@@ -13,3 +13,6 @@ class RunFailed(Exception):
         self.run_id = run_id
         self.code = code
         self.message = message
+
+    def __reduce__(self):  # picklable, so it can cross to and from a Dask worker
+        return (RunFailed, (self.run_id, self.code, self.message))

@@ -1,9 +1,10 @@
-"""Executes the runs of experiments: cache lookup, tool/module invocation, parallel scheduling."""
+"""Executes the runs of experiments: keys, cache lookup, and the scheduling of every selected
+run of every selected experiment in dependency order. Where a tool or python run executes is the
+executor's business (pipeline/executors.py): this process's pool, or a Dask cluster."""
 import ast
 import importlib
 import importlib.util
 import json
-import subprocess
 import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
@@ -12,8 +13,9 @@ from typing import Dict, List, Optional
 
 from pipeline import experiment as experiment_mod
 from pipeline.artifacts import git_commit, write_json_atomic
-from pipeline.context import ReportContext, RunView, StageContext
+from pipeline.context import ReportContext, RunView
 from pipeline.errors import RunFailed
+from pipeline.execute import RunSpec
 from pipeline.hashing import content_hash, file_hash, sha256_json
 from pipeline.paths import ARTIFACTS, BIN, CONFIGS, LOGS, RESULTS, ROOT, STAMPS, rel
 
@@ -56,6 +58,33 @@ def _import_closure(module: str) -> list:
     return sorted(files)
 
 
+def code_hash(kind: str, target: str) -> str:
+    """The code part of a run's key: the tool's binary, or a python stage's or report's import
+    closure within pipeline/ with the binaries it names in TOOLS and the files under its DATA
+    folders. The client keys with it; a worker checks it sees the same before it runs."""
+    if kind == "tool":
+        binary = BIN / target
+        if not binary.exists():
+            raise RunFailed(target, 2, f"no executable {rel(binary)} (run `make build`)")
+        return file_hash(binary)
+    module_file(target)  # a clear error when the module does not exist
+    hashes = [file_hash(f) for f in pipeline_import_closure(target)]
+    # A python stage that drives our executables names them in TOOLS: their binaries
+    # belong to its key exactly like a tool stage's binary.
+    if kind == "python":
+        module = importlib.import_module(target)
+        for tool in getattr(module, "TOOLS", ()):
+            binary = BIN / tool
+            if not binary.exists():
+                raise RunFailed(target, 2, f"no executable {rel(binary)} (run `make build`)")
+            hashes.append(file_hash(binary))
+        # Repository folders it reads (DATA): every file's path and content.
+        for folder in getattr(module, "DATA", ()):
+            for f in sorted(p for p in (ROOT / folder).rglob("*") if p.is_file()):
+                hashes.append([rel(f), file_hash(f)])
+    return sha256_json(hashes)
+
+
 class Outcome:
     def __init__(self, run, status: str, key: str, artifact: Optional[Path], seconds: float,
                  message: str = ""):
@@ -63,51 +92,38 @@ class Outcome:
         self.status = status          # ran | cached | failed | skipped
         self.key = key
         self.artifact = artifact
-        self.seconds = seconds
+        self.seconds = seconds        # wall time as the client saw it
         self.message = message
+        self.exec_seconds = None      # ran: the run's own time where it executed
+        self.where = ""               # ran: host:pid that executed it
 
 
 class Runner:
-    def __init__(self, jobs: int = 1, force: bool = False, force_stages=(), echo=print, progress=None):
-        self.jobs = max(1, jobs)
+    def __init__(self, jobs: int = 1, force: bool = False, force_stages=(), echo=print, progress=None,
+                 executor=None):
+        from pipeline.executors import LocalExecutor
+        self.executor = executor if executor is not None else LocalExecutor(jobs)
+        self.jobs = max(1, self.executor.slots)
         self.force = force
         self.force_stages = set(force_stages)
         self.echo = echo
         # Anything with update(n) (a tqdm bar): told of every finished run, whatever its outcome.
         self.progress = progress
         self.outcomes: Dict[tuple, Outcome] = {}
-        self.lock = threading.Lock()
         for d in (ARTIFACTS, CONFIGS, LOGS, STAMPS):
             d.mkdir(parents=True, exist_ok=True)
 
     # ---------------------------------------------------------------- keys
     def _code_hash(self, run) -> str:
-        if run.kind == "tool":
-            binary = BIN / run.target
-            if not binary.exists():
-                raise RunFailed(run.id, 2, f"no executable {rel(binary)} (run `make build`)")
-            return file_hash(binary)
-        module_file(run.target)  # a clear error when the module does not exist
-        hashes = [file_hash(f) for f in pipeline_import_closure(run.target)]
-        # A python stage that drives our executables names them in TOOLS: their binaries
-        # belong to its key exactly like a tool stage's binary.
-        if run.kind == "python":
-            module = importlib.import_module(run.target)
-            for tool in getattr(module, "TOOLS", ()):
-                binary = BIN / tool
-                if not binary.exists():
-                    raise RunFailed(run.id, 2, f"no executable {rel(binary)} (run `make build`)")
-                hashes.append(file_hash(binary))
-            # Repository folders it reads (DATA): every file's path and content.
-            for folder in getattr(module, "DATA", ()):
-                for f in sorted(p for p in (ROOT / folder).rglob("*") if p.is_file()):
-                    hashes.append([rel(f), file_hash(f)])
-        return sha256_json(hashes)
+        try:
+            return code_hash(run.kind, run.target)
+        except RunFailed as e:
+            raise RunFailed(run.id, e.code, e.message) from None
 
     def _dep_outcome(self, exp, rid) -> Outcome:
         return self.outcomes[(exp.name, rid)]
 
-    def key_of(self, exp, run) -> str:
+    def key_of(self, exp, run, code: Optional[str] = None) -> str:
         def by_hash(stage, idx):
             rid = stage if idx is None else f"{stage}#{idx}"
             return "content:" + content_hash(self._dep_outcome(exp, rid).artifact)
@@ -115,7 +131,7 @@ class Runner:
         material = {
             "kind": run.kind,
             "target": run.target,
-            "code": self._code_hash(run),
+            "code": code if code is not None else self._code_hash(run),
             "mode": run.mode,
             "args": run.args,
             "config": experiment_mod.substitute_refs(run.config, by_hash),
@@ -136,39 +152,6 @@ class Runner:
 
         return experiment_mod.substitute_refs(run.config, by_path)
 
-    def _run_tool(self, exp, run, key: str, artifact: Path, log_path: Path) -> None:
-        config_path = CONFIGS / f"{key}.json"
-        write_json_atomic(config_path, self._resolved_config(exp, run))
-        cmd = [str(BIN / run.target)]
-        if run.mode:
-            cmd.append(run.mode)
-        cmd += run.args + ["--config", rel(config_path), "--out", rel(artifact)]
-        with open(log_path, "w") as log:
-            log.write("$ " + " ".join(cmd[0:1] and [rel(cmd[0])] + cmd[1:]) + "\n")
-            log.flush()
-            proc = subprocess.run(cmd, cwd=ROOT, stdout=log, stderr=subprocess.PIPE, text=True)
-            log.write(proc.stderr)
-        if proc.returncode != 0 or not artifact.exists():
-            lines = [l for l in proc.stderr.strip().splitlines() if l.strip()]
-            msg = lines[-1] if lines else "no message"
-            if proc.returncode == 0:
-                msg = "exited 0 but wrote no artifact"
-            raise RunFailed(run.id, proc.returncode or 1, msg)
-
-    def _run_python(self, exp, run, artifact: Path, log_path: Path) -> None:
-        mod = importlib.import_module(run.target)
-        ctx = StageContext(self._resolved_config(exp, run), artifact, run.id, exp.name)
-        try:
-            mod.run(ctx)
-        except Exception as e:  # a python stage's failure is reported like a tool's
-            if artifact.exists():
-                artifact.unlink()
-            log_path.write_text("\n".join(ctx.log_lines + [f"error: {e}"]) + "\n")
-            raise RunFailed(run.id, 3 if isinstance(e, ArithmeticError) else 2, str(e)) from None
-        log_path.write_text("\n".join(ctx.log_lines) + "\n")
-        if not artifact.exists():
-            raise RunFailed(run.id, 1, "python stage wrote no artifact")
-
     def _run_report(self, exp, run, key: str) -> List[Path]:
         views: Dict[str, List[RunView]] = {}
         for stage in run.inputs:
@@ -181,7 +164,8 @@ class Runner:
 
     def execute(self, exp, run) -> Outcome:
         start = time.time()
-        key = self.key_of(exp, run)
+        code = self._code_hash(run)
+        key = self.key_of(exp, run, code)
         forced = self.force or run.stage in self.force_stages
         log_path = LOGS / f"{exp.name}.{run.id.replace('#', '.')}.log"
         if run.kind == "report":
@@ -198,66 +182,89 @@ class Runner:
         artifact.parent.mkdir(parents=True, exist_ok=True)
         if artifact.exists() and not forced:
             return Outcome(run, "cached", key, artifact, time.time() - start)
+        config = self._resolved_config(exp, run)
+        config_path = None
         if run.kind == "tool":
-            self._run_tool(exp, run, key, artifact, log_path)
-        else:
-            self._run_python(exp, run, artifact, log_path)
-        return Outcome(run, "ran", key, artifact, time.time() - start)
+            config_path = CONFIGS / f"{key}.json"
+            write_json_atomic(config_path, config)
+        spec = RunSpec(experiment=exp.name, run_id=run.id, kind=run.kind, target=run.target, key=key,
+                       code_hash=code, artifact=str(artifact), log=str(log_path), config=config,
+                       config_path=rel(config_path) if config_path else None, mode=run.mode,
+                       args=list(run.args))
+        result = self.executor.execute(spec, run.exclusive)
+        if not result.ok:
+            raise RunFailed(run.id, result.code, result.message)
+        outcome = Outcome(run, "ran", key, artifact, time.time() - start)
+        outcome.exec_seconds, outcome.where = result.seconds, f"{result.host}:{result.pid}"
+        return outcome
 
     # ---------------------------------------------------------------- scheduling
     def run_experiment(self, exp, run_ids: List[str]) -> bool:
         """Runs the given runs of one experiment in dependency order; True when none failed."""
-        pending = list(run_ids)
-        total = len(pending)
-        done_count = 0
+        return self.run_all([(exp, run_ids)])
+
+    def run_all(self, selected) -> bool:
+        """Runs the selected runs of several experiments, [(experiment, run ids)], as one graph:
+        a run starts once its dependencies are done, whatever experiment it belongs to, so
+        independent experiments overlap and the pool does not idle at an experiment's tail. Ready
+        runs start in experiment order, then file order (with one slot, experiments still run one
+        after another). An `exclusive` run waits until nothing else runs, and runs alone.
+        True when none failed."""
+        pending = [(exp, rid) for exp, run_ids in selected for rid in run_ids]
+        total = {exp.name: len(run_ids) for exp, run_ids in selected}
+        done = {name: 0 for name in total}
         running = {}
         ok = True
         exclusive_running = False
+
+        def finished(exp, line):
+            done[exp.name] += 1
+            self._finished(f"[{exp.name} {done[exp.name]}/{total[exp.name]}] {line}")
+
+        def settled(exp, rid):
+            return (exp.name, rid) in self.outcomes
+
         with ThreadPoolExecutor(max_workers=self.jobs) as pool:
             while pending or running:
                 # Skip runs whose dependency failed.
-                for rid in list(pending):
-                    deps = exp.runs[rid].deps
+                for exp, rid in list(pending):
                     if any(self.outcomes.get((exp.name, d)) and self.outcomes[(exp.name, d)].status
-                           in ("failed", "skipped") for d in deps):
-                        pending.remove(rid)
-                        done_count += 1
+                           in ("failed", "skipped") for d in exp.runs[rid].deps):
+                        pending.remove((exp, rid))
                         self.outcomes[(exp.name, rid)] = Outcome(exp.runs[rid], "skipped", "", None, 0,
                                                                  "a dependency failed")
-                        self._finished(f"[{exp.name} {done_count}/{total}] skipped {rid}: a dependency failed")
-                ready = [rid for rid in pending
-                         if all((exp.name, d) in self.outcomes for d in exp.runs[rid].deps)]
-                for rid in ready:
+                        finished(exp, f"skipped {rid}: a dependency failed")
+                ready = [(exp, rid) for exp, rid in pending
+                         if all(settled(exp, d) for d in exp.runs[rid].deps)]
+                for exp, rid in ready:
                     run = exp.runs[rid]
                     if exclusive_running or len(running) >= self.jobs:
                         break
                     if run.exclusive and running:
                         break  # wait until the pool is empty
-                    pending.remove(rid)
-                    running[pool.submit(self._guarded, exp, run)] = rid
+                    pending.remove((exp, rid))
+                    running[pool.submit(self._guarded, exp, run)] = (exp, rid)
                     exclusive_running = run.exclusive
                 if not running:
                     if pending:
                         # Only reachable if dependencies lie outside the selection: they were
                         # added by closure(), so this is a bug.
-                        raise RuntimeError(f"cannot schedule {pending}")
+                        raise RuntimeError(f"cannot schedule {[f'{e.name}:{r}' for e, r in pending]}")
                     break
-                finished, _ = wait(list(running), return_when=FIRST_COMPLETED)
-                for fut in finished:
-                    rid = running.pop(fut)
+                finished_futures, _ = wait(list(running), return_when=FIRST_COMPLETED)
+                for fut in finished_futures:
+                    exp, rid = running.pop(fut)
                     outcome = fut.result()
                     if exp.runs[rid].exclusive:
                         exclusive_running = False
                     self.outcomes[(exp.name, rid)] = outcome
-                    done_count += 1
                     if outcome.status == "failed":
                         ok = False
-                        self._finished(f"[{exp.name} {done_count}/{total}] FAILED {rid}: {outcome.message}")
+                        finished(exp, f"FAILED {rid}: {outcome.message}")
                     elif outcome.status == "cached":
-                        self._finished(f"[{exp.name} {done_count}/{total}] cached {rid} (key {outcome.key[:12]})")
+                        finished(exp, f"cached {rid} (key {outcome.key[:12]})")
                     else:
-                        self._finished(f"[{exp.name} {done_count}/{total}] ran {rid} "
-                                       f"({exp.runs[rid].target}, {outcome.seconds:.1f} s)")
+                        finished(exp, f"ran {rid} ({exp.runs[rid].target}, {outcome.seconds:.1f} s)")
         return ok
 
     def _finished(self, line: str) -> None:
@@ -271,8 +278,16 @@ class Runner:
             return self.execute(exp, run)
         except RunFailed as e:
             return Outcome(run, "failed", "", None, 0, f"exit {e.code}: {e.message}")
-        except Exception as e:  # a report that raised: show it, keep going with the rest
+        except Exception as e:  # a report that raised, a lost worker: show it, keep going with the rest
             return Outcome(run, "failed", "", None, 0, f"{type(e).__name__}: {e}")
+
+    def timings(self) -> List[dict]:
+        """Every finished run's times: the client's wall time and, for a run that executed, its
+        own time where it ran; the difference is what scheduling it cost."""
+        return [{"experiment": name, "run": rid, "kind": o.run.kind, "target": o.run.target,
+                 "status": o.status, "wall_s": round(o.seconds, 4),
+                 "exec_s": None if o.exec_seconds is None else round(o.exec_seconds, 4), "where": o.where}
+                for (name, rid), o in self.outcomes.items()]
 
     # ---------------------------------------------------------------- manifest
     def manifest_entries(self, exp) -> List[dict]:

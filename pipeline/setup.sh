@@ -8,6 +8,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   gmsh libgmsh-dev calculix-ccx
   python3 python3-matplotlib python3-numpy python3-scipy python3-pytest python3-tqdm python3-meshio
+  python3-distributed
   python3-dev pybind11-dev python3-pybind11
 )
 missing=()
