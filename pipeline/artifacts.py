@@ -3,6 +3,7 @@
 import json
 import math
 import os
+import threading
 import subprocess
 from pathlib import Path
 
@@ -35,7 +36,10 @@ def _check_finite(value, where=""):
 def write_json_atomic(path, document) -> None:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f"{path.name}.tmp.{os.getpid()}")
+    # The thread's id as well as the PID: two threads of one process may write the same file at
+    # once (one key in two overlapping experiments); the name still ends in `.tmp.PID`, which is
+    # what the stale-file cleaner reads.
+    tmp = path.with_name(f"{path.name}.{threading.get_ident()}.tmp.{os.getpid()}")
     with open(tmp, "w") as f:
         json.dump(document, f, allow_nan=False)
         f.write("\n")
