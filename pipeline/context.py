@@ -62,6 +62,10 @@ class ReportContext:
             raise KeyError(f"report has no input stage {stage!r}; add it to the stage's inputs")
         return self._views[stage]
 
+    def all_runs(self) -> List[RunView]:
+        """Every input run of the report, stage by stage."""
+        return [v for views in self._views.values() for v in views]
+
     def out(self, name: str) -> Path:
         path = self.results_dir / name
         path.parent.mkdir(parents=True, exist_ok=True)

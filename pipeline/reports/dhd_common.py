@@ -174,13 +174,44 @@ beside ours and are labelled as the paper's. What the experiments are and every 
 SECTION_ORDER = ["table1", "table2", "partition", "pareto", "fig9", "liver"]
 
 
+MODEL_WORDS = {
+    "neo_hookean_paper": "the paper's neo-Hookean form (000 eq. 22)",
+    "neo_hookean_decoupled": "the decoupled neo-Hookean form of CalculiX and of Miller's TLED",
+    "linear": "linear elasticity",
+}
+
+
+def material_line(ctx) -> str:
+    """One sentence naming the material law of every dhd_sim run the report read, and whether
+    the config chose it or left `material.model` out (the default is the paper's form, which
+    differs from CalculiX's by 5–9 % in reaction: the reader must see which one the numbers are)."""
+    seen = []
+    for view in ctx.all_runs():
+        m = view.payload.get("material") if isinstance(view.payload, dict) else None
+        if not isinstance(m, dict) or "model" not in m:
+            continue
+        entry = (m["model"], bool(m.get("model_defaulted", False)), m.get("E"), m.get("nu"), m.get("density"))
+        if entry not in seen:
+            seen.append(entry)
+    if not seen:
+        return ""
+    parts = []
+    for model, defaulted, E, nu, rho in seen:
+        how = "the default, `material.model` left out" if defaulted else "chosen in the config"
+        parts.append(f"`{model}` ({MODEL_WORDS.get(model, model)}; {how}), E = {E:g} Pa, ν = {nu:g}, "
+                     f"ρ = {rho:g} kg/m³")
+    return "Material of these runs: " + "; ".join(parts) + "."
+
+
 def write_section(ctx, key: str, text: str, facts: dict = None) -> None:
     """Writes this experiment's part of results/dhd/summary.md (and the few numbers the opening
     verdict needs, as JSON) and re-assembles the whole file from every part present, so the
-    summary is complete whichever experiment ran last."""
+    summary is complete whichever experiment ran last. The section ends with the material law
+    its runs used (material_line)."""
     if not re.match(r"^[a-z0-9_]+$", key):
         raise ValueError(f"section key {key!r}")
-    ctx.out(f"{SECTION_DIR}/{key}.md").write_text(text.strip() + "\n")
+    material = material_line(ctx)
+    ctx.out(f"{SECTION_DIR}/{key}.md").write_text(text.strip() + ("\n\n" + material if material else "") + "\n")
     if facts is not None:
         ctx.out(f"{SECTION_DIR}/{key}.json").write_text(json.dumps(facts, indent=1, sort_keys=True) + "\n")
     assemble_summary(ctx)

@@ -145,6 +145,58 @@ TEST(Explicit, ExternalWorkBalancesEnergyWithoutDamping) {
   EXPECT_GT(r.energies.back().external_work, 0.0);
 }
 
+// Ramped gravity (Scene::gravity_ramp) is the same body force as a nodal load m_i g on every
+// node with the same ramp (the workaround it replaces): displacements agree to round-off (the
+// node update multiplies A m_i and g in another order) and so does the booked work; without
+// damping kinetic + strain energy equals that work (trapezoidal booking while the ramp runs,
+// G·Δu after it). A ramp of zero duration is the constant gravity, bit for bit.
+TEST(Explicit, RampedGravityIsTheRampedNodalLoadOfEveryNode) {
+  const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
+  const fem::Material mat = fem::Material::make(kPaper, material::NeoHookeanForm::decoupled);
+  const std::vector<ElementKind> kinds(m.num_tets(), ElementKind::tled);
+  const Eigen::Vector3d g(0.0, 2.0, -9.81);
+  dynamics::ExplicitOptions opt;
+  opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
+  opt.steps = 1200;
+  opt.energy_interval = 50;
+  dynamics::Scene ramped;
+  ramped.constraints = {constraint(m, "bottom", Eigen::Vector3d::Zero())};
+  ramped.gravity = g;
+  ramped.gravity_ramp.duration = 600 * opt.dt;  // ends mid-run: both bookings are exercised
+  ramped.gravity_ramp.shape = dynamics::Ramp::Shape::smooth;
+  dynamics::Scene loads;
+  loads.constraints = ramped.constraints;
+  const std::vector<double> mass = dynamics::lumped_mass(m, kPaper.density);
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    dynamics::NodalLoad load;
+    load.name = "node " + std::to_string(i);
+    load.nodes = {i};
+    load.force_per_node = mass[i] * g;
+    load.ramp = ramped.gravity_ramp;
+    loads.loads.push_back(load);
+  }
+  const auto a = run_explicit(m, kinds, mat, ramped, opt);
+  const auto b = run_explicit(m, kinds, mat, loads, opt);
+  EXPECT_LT(max_abs_diff(a.displacement, b.displacement), 1e-10 * max_abs(b.displacement));
+  ASSERT_EQ(a.energies.size(), b.energies.size());
+  for (std::size_t s = 0; s < a.energies.size(); ++s) {
+    const auto& e = a.energies[s];
+    EXPECT_NEAR(e.external_work, b.energies[s].external_work, 1e-9 * std::abs(b.energies.back().external_work))
+        << "t = " << e.time;
+    if (e.external_work > 0) EXPECT_NEAR(e.kinetic + e.strain, e.external_work, 1e-4 * e.external_work) << "t = " << e.time;
+  }
+  EXPECT_GT(a.energies.back().external_work, 0.0);
+  // The ramp is felt: a sudden gravity ends the run elsewhere.
+  dynamics::Scene constant = ramped;
+  constant.gravity_ramp.duration = 0;
+  dynamics::Scene plain = ramped;
+  plain.gravity_ramp = dynamics::Ramp{};
+  const auto c = run_explicit(m, kinds, mat, constant, opt);
+  const auto d = run_explicit(m, kinds, mat, plain, opt);
+  EXPECT_EQ(c.displacement, d.displacement);
+  EXPECT_GT(max_abs_diff(c.displacement, a.displacement), 1e-3 * max_abs(c.displacement));
+}
+
 TEST(Explicit, DampedRunSettlesOnTheStaticSolution) {
   // Bottom clamped, top pushed down 15 % and sideways with a smooth ramp, mixed partition
   // (TLED top layers, linear and corotational below), α = 60/s.

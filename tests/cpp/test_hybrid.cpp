@@ -286,6 +286,26 @@ TEST(Config, StrictReadingNamesThePointer) {
   expect_error({{"mesh", "m"}, {"partition", {{"linear_fraction", 1.5}}}}, "/partition/linear_fraction");
   expect_error({{"mesh", "m"}, {"output", {{"vtu", "a.vtu"}, {"vtu_format", "binary"}}}}, "/output/vtu_format");
   expect_error({{"mesh", "m"}, {"output", {{"vtu_format", "ascii"}}}}, "/output");
+  expect_error({{"mesh", "m"}, {"boundary", {{"gravity", {{"acceleration", {0, 0, -9.81}}, {"ramp_tim", 1}}}}}},
+               "/boundary/gravity/ramp_tim");
+  expect_error({{"mesh", "m"}, {"boundary", {{"gravity", {{"acceleration", {0, 0, -9.81}}, {"ramp_time", -1}}}}}},
+               "/boundary/gravity/ramp_time");
+  expect_error({{"mesh", "m"}, {"boundary", {{"gravity", {{"ramp_time", 1}}}}}}, "/boundary/gravity");
+}
+
+// Gravity is a vector (constant) or an object with the ramp options of a force.
+TEST(Config, GravityTakesTheRampOfAForce) {
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  const auto constant = parse({{"mesh", "m"}, {"boundary", {{"gravity", {0, 0, -9.81}}}}}, m);
+  EXPECT_EQ(constant.scene.gravity, Eigen::Vector3d(0, 0, -9.81));
+  EXPECT_EQ(constant.scene.gravity_ramp.duration, 0.0);
+  const auto ramped = parse({{"mesh", "m"},
+                             {"boundary",
+                              {{"gravity", {{"acceleration", {0, 1, -9.81}}, {"ramp_time", 0.2}, {"ramp", "smooth"}}}}}},
+                            m);
+  EXPECT_EQ(ramped.scene.gravity, Eigen::Vector3d(0, 1, -9.81));
+  EXPECT_EQ(ramped.scene.gravity_ramp.duration, 0.2);
+  EXPECT_EQ(ramped.scene.gravity_ramp.shape, dynamics::Ramp::Shape::smooth);
 }
 
 // fem::kElementKinds is the one table of element kinds: every kind has a distinct name that

@@ -17,6 +17,9 @@ class FakeContext:
             raise KeyError(stage)
         return self._runs[stage]
 
+    def all_runs(self):
+        return [r for runs in self._runs.values() for r in runs]
+
     def out(self, name):
         path = self.results_dir / name
         path.parent.mkdir(parents=True, exist_ok=True)

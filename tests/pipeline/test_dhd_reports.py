@@ -13,6 +13,7 @@ from conftest import ROOT
 from pipeline.config_reader import ConfigError
 from pipeline.reports import dhd_common as common
 from pipeline.stages import dhd_node_sets as node_sets
+from report_ctx import FakeContext, run
 
 
 # --------------------------------------------------------------------------- a small cuboid
@@ -383,8 +384,7 @@ def test_verdict_speaks_only_of_what_was_measured():
 
 
 def test_summary_is_assembled_in_a_fixed_order(tmp_path):
-    ctx = SimpleNamespace(results_dir=tmp_path)
-    ctx.out = lambda name: (tmp_path / name).parent.mkdir(parents=True, exist_ok=True) or tmp_path / name
+    ctx = FakeContext(tmp_path)
     common.write_section(ctx, "liver", "### liver part")
     common.write_section(ctx, "table1", "### table 1 part")
     text = (tmp_path / "summary.md").read_text()
@@ -472,3 +472,19 @@ def test_table2_report_end_to_end_on_a_small_cuboid(pipeline_env):
     assert (out / "table3.csv").exists() and (out / "summary.md").read_text().startswith("## DHD-FEA")
     again = run_pipeline(pipeline_env, "run", "mini")
     assert "pipeline: 6 cached" in again.stdout
+
+
+def test_every_section_names_the_material_law_and_whether_it_was_defaulted(tmp_path):
+    paper = {"model": "neo_hookean_paper", "model_defaulted": True, "E": 3000, "nu": 0.45, "density": 1000}
+    chosen = dict(paper, model="neo_hookean_decoupled", model_defaulted=False)
+    ctx = FakeContext(tmp_path, runs={"sim": [run({"material": paper}), run({"material": paper})],
+                                      "other": [run({"material": chosen}), run({"no_material": 1})]})
+    line = common.material_line(ctx)
+    assert line.count("`neo_hookean_paper`") == 1 and "left out" in line
+    assert "`neo_hookean_decoupled`" in line and "chosen in the config" in line
+    assert "E = 3000 Pa" in line and "ν = 0.45" in line
+    common.write_section(ctx, "table1", "Some text.")
+    assert (tmp_path / common.SECTION_DIR / "table1.md").read_text().strip().endswith(line)
+    only_chosen = FakeContext(tmp_path / "b", runs={"sim": [run({"material": chosen})]})
+    assert "left out" not in common.material_line(only_chosen)
+    assert common.material_line(FakeContext(tmp_path / "c", runs={"sim": [run({})]})) == ""

@@ -57,7 +57,8 @@ EnergySample ExplicitSolver::sample_energy(int n_done, const double* u_before, c
   strain += elements_.nodal_volumetric_energy(slot_volume_ratio_.data());
   s.kinetic = kinetic;
   s.strain = strain;
-  s.external_work = external_work(u_mid) + gravity_work;
+  // Constant gravity: its work is G·u exactly (the booked terms stay 0).
+  s.external_work = external_work(u_mid) + (gravity_ramp_work_ + (gravity_work - gravity_booked_potential_));
   return s;
 }
 

@@ -6,7 +6,7 @@ namespace softsim::dynamics {
 // node i; `check` turns NaN as soon as a value is not finite.
 template <bool kGravity, bool kApplied>
 inline void ExplicitSolver::update_node(int i, const double* up, const double* uc, double* un, double& check,
-                                        double f[3]) const {
+                                        double f[3], const Eigen::Vector3d& g) const {
   elements_.gather(i, f);
   const double a = A_[i], b = B_[i], c = C_[i];
   double x = b * uc[3 * i] - c * up[3 * i] - a * f[0];
@@ -14,9 +14,9 @@ inline void ExplicitSolver::update_node(int i, const double* up, const double* u
   double z = b * uc[3 * i + 2] - c * up[3 * i + 2] - a * f[2];
   if (kGravity) {
     const double am = Am_[i];
-    x += am * scene_.gravity.x();
-    y += am * scene_.gravity.y();
-    z += am * scene_.gravity.z();
+    x += am * g.x();
+    y += am * g.y();
+    z += am * g.z();
   }
   if (kApplied) {  // + A F as a nodal load enters; constrained components are overwritten later
     x += a * applied_force_[3 * i];
@@ -32,28 +32,53 @@ inline void ExplicitSolver::update_node(int i, const double* up, const double* u
 // Nodes list[begin, split) are plain, list[split, end) special.
 template <bool kGravity, bool kApplied>
 void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
-                                  const double* uc, double* un, double& check) {
+                                  const double* uc, double* un, double& check, const Eigen::Vector3d& g) {
   for (int k = begin; k < split; ++k) {
     double f[3];
-    update_node<kGravity, kApplied>(list[k], up, uc, un, check, f);
+    update_node<kGravity, kApplied>(list[k], up, uc, un, check, f, g);
   }
   for (int k = split; k < end; ++k) {
     double f[3];
-    update_node<kGravity, kApplied>(list[k], up, uc, un, check, f);
+    update_node<kGravity, kApplied>(list[k], up, uc, un, check, f, g);
     update_special(list[k], step, f, up, uc, un);
   }
 }
 
 void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end, int step, const double* up,
-                                  const double* uc, double* un, double& check) {
+                                  const double* uc, double* un, double& check, const Eigen::Vector3d& g) {
   const bool applied = !applied_.empty();
   if (gravity_) {
-    if (applied) update_nodes<true, true>(list, begin, split, end, step, up, uc, un, check);
-    else update_nodes<true, false>(list, begin, split, end, step, up, uc, un, check);
+    if (applied) update_nodes<true, true>(list, begin, split, end, step, up, uc, un, check, g);
+    else update_nodes<true, false>(list, begin, split, end, step, up, uc, un, check, g);
   } else {
-    if (applied) update_nodes<false, true>(list, begin, split, end, step, up, uc, un, check);
-    else update_nodes<false, false>(list, begin, split, end, step, up, uc, un, check);
+    if (applied) update_nodes<false, true>(list, begin, split, end, step, up, uc, un, check, g);
+    else update_nodes<false, false>(list, begin, split, end, step, up, uc, un, check, g);
   }
+}
+
+Eigen::Vector3d ExplicitSolver::gravity_at(int step) const {
+  if (!gravity_ramped_) return scene_.gravity;
+  return scene_.gravity_ramp.at(time_at(step)) * scene_.gravity;
+}
+
+double ExplicitSolver::gravity_potential(const double* u) const {
+  double p = 0;
+  for (int i = 0; i < n_; ++i)
+    for (int k = 0; k < 3; ++k) p += mass_[i] * scene_.gravity[k] * u[3 * i + k];
+  return p;
+}
+
+// The work of ramped gravity on [t_{s−1}, t_s], booked at step s while
+// the ramp runs (u_s = uc; 000 eq. 33's loads R enter the energy balance trapezoidally); one pass over
+// the nodes per step, only then.
+void ExplicitSolver::book_gravity_work(int step, const double* uc) {
+  if (!gravity_ramped_ || step < 1) return;
+  const double t_before = time_at(step - 1);
+  if (!(t_before < scene_.gravity_ramp.duration)) return;
+  const double r_mean = 0.5 * (scene_.gravity_ramp.at(t_before) + scene_.gravity_ramp.at(time_at(step)));
+  const double p = gravity_potential(uc);
+  gravity_ramp_work_ += r_mean * (p - gravity_booked_potential_);
+  gravity_booked_potential_ = p;
 }
 
 // Loads, probe, constraints, work booking and trajectory samples of node i, after its update;

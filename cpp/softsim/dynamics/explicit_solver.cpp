@@ -66,6 +66,7 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
   Am_.resize(n_);
   set_coefficients(opt_.dt, opt_.dt);
   gravity_ = scene_.gravity.squaredNorm() > 0;
+  gravity_ramped_ = gravity_ && scene_.gravity_ramp.duration > 0;
 
   dofs_ = resolve_constraints(scene_, n_);
   const std::vector<char> mask = constrained_mask(dofs_, n_);
@@ -189,6 +190,7 @@ void ExplicitSolver::start() {
   applied_.clear();
   applied_from_.clear();
   applied_work_ = 0;
+  gravity_ramp_work_ = 0;
   n_done_ = 0;
   energies_.clear();
   initial_energy_ = initial_bound_ = 0;
@@ -216,11 +218,12 @@ void ExplicitSolver::start() {
     throw NumericalError(msg.str());
   }
   std::vector<double>& um1 = buf_[0];
+  const Eigen::Vector3d g0 = gravity_at(0);
   for (int i = 0; i < n_; ++i) {
     double f[3];
     elements_.gather(i, f);
     for (int k = 0; k < 3; ++k) {
-      double r = mass_[i] * scene_.gravity[k];
+      double r = mass_[i] * g0[k];
       const double a = mass_[i] > 0 ? (r - f[k] - opt_.damping_alpha * mass_[i] * v0[3 * i + k]) / mass_[i] : 0.0;
       um1[3 * i + k] = u0[3 * i + k] - dt * v0[3 * i + k] + 0.5 * dt * dt * a;
     }
@@ -239,6 +242,7 @@ void ExplicitSolver::start() {
   }
   for (const auto& d : dofs_)
     um1[3 * d.node + d.component] = d.value * scene_.constraints[d.constraint].ramp.at(-dt);
+  gravity_booked_potential_ = gravity_ramped_ ? gravity_potential(u0.data()) : 0.0;
   started_ = true;
 }
 
@@ -291,6 +295,8 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
         if (timed) ++me.timed_steps;
         fem::KernelStats st;
         double check = 0.0;
+        const Eigen::Vector3d g = gravity_at(s);
+        if (tid == 0) book_gravity_work(s, uc);  // reads u_s, which step s does not write
         if (nodal_pressure) {
           // ANP pre-pass: det F of the ANP elements, then the nodal pressures they need.
           for (int p = tid; p < T; p += nthreads)
@@ -304,7 +310,8 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
           for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) {
             elements_.compute_tile(uc, q, st, timed ? me.kernel_seconds.data() : nullptr);
             const auto t0 = timed ? Clock::now() : Clock::time_point();
-            update_nodes(local_nodes_.data(), local_begin_[q], local_split_[q], local_begin_[q + 1], s, up, uc, un, check);
+            update_nodes(local_nodes_.data(), local_begin_[q], local_split_[q], local_begin_[q + 1], s, up, uc, un, check,
+                         g);
             if (timed) me.node_seconds += seconds_since(t0);
           }
         me.min_j = st.min_j;
@@ -321,7 +328,7 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
         const auto t0 = timed ? Clock::now() : Clock::time_point();
         for (int p = tid; p < T; p += nthreads)
           update_nodes(deferred_nodes_.data(), deferred_begin_[p], deferred_split_[p], deferred_begin_[p + 1], s, up,
-                       uc, un, check);
+                       uc, un, check, g);
         if (timed) me.node_seconds += seconds_since(t0);
         me.bad = !(check == 0.0);
         barrier();
@@ -441,7 +448,7 @@ std::vector<Eigen::Vector3d> ExplicitSolver::reactions() {
   for (const auto& d : dofs_) {
     double f[3];
     elements_.gather(d.node, f);
-    double r = f[d.component] - mass_[d.node] * scene_.gravity[d.component];
+    double r = f[d.component] - mass_[d.node] * scene_.gravity[d.component] * (gravity_ramped_ ? scene_.gravity_ramp.at(t) : 1.0);
     for (int e = load_begin_[d.node]; e < load_begin_[d.node + 1]; ++e) {
       const NodalLoad& load = scene_.loads[loads_[e].load];
       r -= load.ramp.at(t) * load.force_per_node[d.component];

@@ -203,12 +203,18 @@ class ExplicitSolver {
   void start();
   void sample(const SnapshotFn& snapshot);
   template <bool kGravity, bool kApplied>
-  void update_node(int i, const double* up, const double* uc, double* un, double& check, double f[3]) const;
+  void update_node(int i, const double* up, const double* uc, double* un, double& check, double f[3],
+                   const Eigen::Vector3d& g) const;
   template <bool kGravity, bool kApplied>
   void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
-                    double* un, double& check);
+                    double* un, double& check, const Eigen::Vector3d& g);
   void update_nodes(const int* list, int begin, int split, int end, int step, const double* up, const double* uc,
-                    double* un, double& check);
+                    double* un, double& check, const Eigen::Vector3d& g);
+  // Gravity acting at step `step` (scene gravity × its ramp; the scene's vector itself when
+  // constant, so a constant gravity takes the same values bit for bit).
+  Eigen::Vector3d gravity_at(int step) const;
+  double gravity_potential(const double* u) const;  // G·u with G = M g (the full gravity)
+  void book_gravity_work(int step, const double* uc);
   void update_special(int i, int step, const double f[3], const double* up, const double* uc, double* un);
   void set_coefficients(double dt_before, double dt_after);
   void check_step();
@@ -227,6 +233,12 @@ class ExplicitSolver {
   int n_ = 0;
   std::vector<double> A_, B_, C_, Am_;
   bool gravity_ = false;
+  // Ramped gravity: its work is booked step by step while the ramp runs (trapezoidal, as for
+  // loads), ½ (r(t_{s−1}) + r(t_s)) G·(u_s − u_{s−1}); after the ramp it is G·(u − u_b) on top,
+  // u_b the last booked state. Both stay 0 for a constant gravity (work G·u, exact).
+  bool gravity_ramped_ = false;
+  double gravity_ramp_work_ = 0;
+  double gravity_booked_potential_ = 0;  // G·u_b
   std::vector<ConstrainedDof> dofs_;
   std::vector<char> moving_;  // per constraint: prescribed value non-zero and ramped, or driven
   std::vector<LoadEntry> loads_;

@@ -51,7 +51,10 @@ struct ProbeSpring {
 struct Scene {
   std::vector<DisplacementConstraint> constraints;  // later entries override earlier ones per component
   std::vector<NodalLoad> loads;
-  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // m/s², constant in time
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // m/s², at the end of gravity_ramp
+  // Gravity acts as gravity × gravity_ramp.at(t) (explicit runs; a static run scales every load
+  // with its increments). No ramp (duration 0): constant from t = 0.
+  Ramp gravity_ramp;
   bool has_probe = false;
   ProbeSpring probe;
 };

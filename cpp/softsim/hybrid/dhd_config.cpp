@@ -236,7 +236,18 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
       scene.loads.push_back(load);
     }
   }
-  if (b->has("gravity")) scene.gravity = read_vec3(*b, "gravity");
+  if (b->has("gravity")) {
+    // [gx, gy, gz], constant; or {"acceleration": [gx, gy, gz], "ramp_time", "ramp"}, ramped
+    // like a force (a dynamic relaxation from zero load, without a force entry per node).
+    const io::JsonReader g = b->at("gravity");
+    if (g.raw().is_object()) {
+      scene.gravity = read_vec3(g, "acceleration");
+      scene.gravity_ramp = read_ramp(g);
+      g.reject_unknown();
+    } else {
+      scene.gravity = read_vec3(*b, "gravity");
+    }
+  }
   if (auto probe = b->optional("probe")) {
     std::string name;
     const std::vector<int> nodes = read_selection(*probe, mesh, name);

@@ -270,8 +270,8 @@ nlohmann::json bench_payload(const mesh::TetMesh& mesh, const DhdConfig& c, cons
                   {"node_phase_ns_per_node", b.node_ns_per_node}});
   }
   return {{"mesh", {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}}},
-          {"material", {{"model", c.model}, {"E", c.material.elastic.youngs_modulus}, {"nu", c.material.elastic.poisson_ratio},
-                        {"density", c.material.elastic.density}}},
+          {"material", {{"model", c.model}, {"model_defaulted", c.model_defaulted}, {"E", c.material.elastic.youngs_modulus},
+                        {"nu", c.material.elastic.poisson_ratio}, {"density", c.material.elastic.density}}},
           {"scene", c.has_boundary ? "configured" : "default: bottom fixed, top centre pushed down 10 % of the height"},
           {"precision", "double"},
           {"runs", rs}};
