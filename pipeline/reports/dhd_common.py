@@ -198,7 +198,7 @@ def material_line(ctx) -> str:
     parts = []
     for model, defaulted, E, nu, rho in seen:
         how = "the default, `material.model` left out" if defaulted else "chosen in the config"
-        parts.append(f"`{model}` ({MODEL_WORDS.get(model, model)}; {how}), E = {E:g} Pa, ν = {nu:g}, "
+        parts.append(f"`{model}`, {MODEL_WORDS.get(model, model)}, {how}: E = {E:g} Pa, ν = {nu:g}, "
                      f"ρ = {rho:g} kg/m³")
     return "Material of these runs: " + "; ".join(parts) + "."
 

@@ -108,13 +108,23 @@ void ExplicitSolver::set_initial_state(std::vector<double> u0, std::vector<doubl
 // The central-difference coefficients of 000 eq. 33 for a step of `dt_after` after one of
 // `dt_before` (the constant-step ones when equal).
 void ExplicitSolver::set_coefficients(double dt_before, double dt_after) {
-  for (int i = 0; i < n_; ++i) {
-    const CentralDifference cd = central_difference(mass_[i], opt_.damping_alpha, dt_before, dt_after);
-    A_[i] = cd.A;
-    B_[i] = cd.B;
-    C_[i] = cd.C;
-    Am_[i] = cd.A * mass_[i];
+  coefficient_dt_before_ = dt_before;
+  coefficient_dt_after_ = dt_after;
+  for (int i = 0; i < n_; ++i) set_node_coefficients(i);
+}
+
+// A node without mass (none of its elements is left after a cut) holds its place: u_{n+1} = u_n.
+void ExplicitSolver::set_node_coefficients(int i) {
+  if (!(mass_[i] > 0)) {
+    A_[i] = C_[i] = Am_[i] = 0.0;
+    B_[i] = 1.0;
+    return;
   }
+  const CentralDifference cd = central_difference(mass_[i], opt_.damping_alpha, coefficient_dt_before_, coefficient_dt_after_);
+  A_[i] = cd.A;
+  B_[i] = cd.B;
+  C_[i] = cd.C;
+  Am_[i] = cd.A * mass_[i];
 }
 
 double ExplicitSolver::time_at(int step) const {
@@ -191,6 +201,8 @@ void ExplicitSolver::start() {
   applied_from_.clear();
   applied_work_ = 0;
   gravity_ramp_work_ = 0;
+  removed_energy_ = 0;
+  next_event_ = 0;
   n_done_ = 0;
   energies_.clear();
   initial_energy_ = initial_bound_ = 0;
@@ -256,6 +268,7 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
   const bool nodal_pressure = elements_.has_nodal_pressure();
   auto& buf = buf_;
   const auto t_loop = Clock::now();
+  fire_due_events();
   while (n_done_ < target) {
     // The one step from the previous step size to a new one is done; back to equal steps.
     if (transition_ && n_done_ > segments_.back().first_step) {
@@ -276,6 +289,11 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
     const long long next_sample = n_done < 1 ? 1 : ((n_done - 1) / ei + 1) * ei + 1;
     stop = std::min(stop, next_sample);
     if (opt_.steps > n_done) stop = std::min<long long>(stop, opt_.steps);
+    if (next_event_ < opt_.event_times.size()) {
+      // The first step whose time reaches the event (within the current step size).
+      const double ahead = (opt_.event_times[next_event_] - time()) / dt();
+      stop = std::min(stop, n_done + std::max(1LL, static_cast<long long>(std::ceil(ahead - 1e-9))));
+    }
     if (opt_.snapshot_interval > 0) {
       const long long si = opt_.snapshot_interval;
       stop = std::min(stop, (n_done / si + 1) * si);
@@ -363,6 +381,7 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
     }
     n_done_ = s_end;
     sample(snapshot);
+    fire_due_events();
     if (opt_.adapt_step && n_done_ % opt_.step_check_interval == 0) {
       const auto ts = Clock::now();
       check_step();
@@ -395,7 +414,8 @@ void ExplicitSolver::sample(const SnapshotFn& snapshot) {
       initial_energy_ = s.kinetic + s.strain - s.external_work;
       initial_bound_ = bound_kinetic + s.strain;
     }
-    s.dissipated = initial_energy_ + s.external_work - s.kinetic - s.strain;
+    s.removed = removed_energy_;
+    s.dissipated = initial_energy_ + s.external_work - s.kinetic - s.strain - s.removed;
     energies_.push_back(s);
     const double mechanical = bound_kinetic + s.strain;
     // The conserved (half-step) kinetic energy cannot reveal an instability (it stays balanced

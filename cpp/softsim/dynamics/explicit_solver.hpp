@@ -49,6 +49,23 @@ struct ExplicitOptions {
   bool adapt_step = false;
   double step_safety = 0.9;
   int step_check_interval = 10;
+  // Told which elements a cut removed (remove_elements), e.g. to drop them from the deformed
+  // critical-step estimate above.
+  std::function<void(const std::vector<int>& elements)> elements_removed;
+  // Scheduled events (ascending times, s): advance() stops at the first step whose time reaches
+  // event_times[k] and calls on_event(k) there, between steps (a cut scheduled by a config).
+  std::vector<double> event_times;
+  std::function<void(int event)> on_event;
+};
+
+// What one cut event removed (ExplicitSolver::remove_elements).
+struct CutReport {
+  std::vector<int> elements;  // removed now (original indices)
+  double mass = 0;            // kg that left with them
+  double strain_energy = 0;   // stored in them at the cut (their element part; J)
+  double kinetic_energy = 0;  // of the mass that left, at the half-step velocity before the cut (J)
+  int detached_nodes = 0;     // nodes left without any element: they hold their place
+  double seconds = 0;         // wall time of the local update
 };
 
 // One run of equal steps: from step `first_step` (at `time`) on, each step lasts `dt`.
@@ -65,7 +82,8 @@ struct EnergySample {
   double kinetic = 0;
   double strain = 0;
   double external_work = 0;  // by loads, gravity, the probe and moving constraints since t = 0 (trapezoidal)
-  double dissipated = 0;     // initial energy + work − kinetic − strain (damping, and O(Δt²) error)
+  double removed = 0;        // carried away by elements removed by cuts since t = 0 (CutReport)
+  double dissipated = 0;     // initial energy + work − kinetic − strain − removed (damping, and O(Δt²) error)
 };
 
 struct ExplicitTiming {
@@ -184,6 +202,16 @@ class ExplicitSolver {
   // F · Δu is booked exactly (the force is constant between calls). An empty set removes them.
   void set_applied_forces(const std::vector<AppliedForce>& forces);
 
+  // Between steps: a cut by element removal (019). The element set drops the elements by a local
+  // update (fem::ElementSet::remove_elements), their lumped mass ρ⁰V/4 leaves their corners and
+  // only those nodes' central-difference coefficients are recomputed; a node left without any
+  // element holds its place. Nothing global is rebuilt. The stable step cannot shrink: each
+  // remaining element keeps its own mass share and stiffness, and the lumped system's highest
+  // frequency is bounded by the elements' (the element eigenvalue bound behind 000 eq. 34).
+  // Permanent: reset() returns to t = 0 with the cut mesh. `mesh`: the element set's mesh.
+  CutReport remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements);
+  double removed_energy() const { return removed_energy_; }
+
  private:
   struct LoadEntry {
     int node;
@@ -217,6 +245,8 @@ class ExplicitSolver {
   void book_gravity_work(int step, const double* uc);
   void update_special(int i, int step, const double f[3], const double* up, const double* uc, double* un);
   void set_coefficients(double dt_before, double dt_after);
+  void set_node_coefficients(int i);
+  void fire_due_events();
   void check_step();
   std::string where(int step) const;
   [[noreturn]] void fail_step_size(int step, const double* u, const std::string& what) const;
@@ -232,7 +262,12 @@ class ExplicitSolver {
   ExplicitOptions opt_;
   int n_ = 0;
   std::vector<double> A_, B_, C_, Am_;
+  double coefficient_dt_before_ = 0, coefficient_dt_after_ = 0;  // the step pair A, B, C are for
   bool gravity_ = false;
+  // Cuts: elements left per node (built at the first cut), the energy removed, the next event.
+  std::vector<int> elements_left_;
+  double removed_energy_ = 0;
+  std::size_t next_event_ = 0;
   // Ramped gravity: its work is booked step by step while the ramp runs (trapezoidal, as for
   // loads), ½ (r(t_{s−1}) + r(t_s)) G·(u_s − u_{s−1}); after the ramp it is G·(u − u_b) on top,
   // u_b the last booked state. Both stay 0 for a constant gravity (work G·u, exact).

@@ -32,6 +32,14 @@ DeformedCriticalStep::DeformedCriticalStep(const mesh::TetMesh& mesh, std::vecto
   }
 }
 
+void DeformedCriticalStep::remove(const std::vector<int>& elements) {
+  std::vector<int> gone(elements);
+  std::sort(gone.begin(), gone.end());
+  deforming_.erase(std::remove_if(deforming_.begin(), deforming_.end(),
+                                  [&](int e) { return std::binary_search(gone.begin(), gone.end(), e); }),
+                   deforming_.end());
+}
+
 CriticalStep DeformedCriticalStep::at(const double* u) const {
   CriticalStep c;
   c.min_altitude = fixed_altitude_;

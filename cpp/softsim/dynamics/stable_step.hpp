@@ -29,6 +29,9 @@ class DeformedCriticalStep {
   DeformedCriticalStep(const mesh::TetMesh& mesh, std::vector<char> follows, const material::ElasticParameters& p);
   // Δt_cr at displacement `u` (3 per node); `min_altitude` and `wave_speed` as in CriticalStep.
   CriticalStep at(const double* u) const;
+  // Elements a cut removed no longer count (their geometry may go anywhere). The reference
+  // altitude of removed small-strain elements stays in the minimum: conservative.
+  void remove(const std::vector<int>& elements);
 
  private:
   const mesh::TetMesh* mesh_;

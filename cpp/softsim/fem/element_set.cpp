@@ -108,6 +108,42 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
   }
   build_tiles(key, std::max(tile_nodes, 1));
   build_nodal_pressure(mesh);
+  slot_of_.assign(mesh.num_tets(), -1);
+  for (int i = 0; i < stride_; ++i)
+    if (original_[i] >= 0) slot_of_[original_[i]] = i;
+  removed_.assign(mesh.num_tets(), 0);
+}
+
+std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements) {
+  std::vector<int> done;
+  std::vector<int> anp_nodes;
+  for (int e : elements) {
+    if (e < 0 || e >= static_cast<int>(removed_.size()))
+      throw std::invalid_argument("ElementSet: element " + std::to_string(e) + " out of range");
+    if (removed_[e]) continue;
+    removed_[e] = 1;
+    ++num_removed_;
+    done.push_back(e);
+    const int i = slot_of_[e];
+    if (kinds_[e] == ElementKind::linear && assembled_linear()) linear_rows_.remove_element(mesh, e, material_);
+    if (kinds_[e] == ElementKind::anp)
+      for (int a : mesh.tets[e]) anp_nodes.push_back(a);
+    for (auto& g : grad_) g[i] = 0.0;
+    volume_[i] = 0.0;
+    if (!volume_ratio_.empty()) volume_ratio_[i] = 1.0;
+  }
+  // ANP: V_a = Σ ⁰V_e / 4 over the corners' remaining ANP elements, w_ae = ⁰V_e / (4 V_a), in the
+  // stored order (a removed element keeps its entry with weight 0).
+  std::sort(anp_nodes.begin(), anp_nodes.end());
+  anp_nodes.erase(std::unique(anp_nodes.begin(), anp_nodes.end()), anp_nodes.end());
+  for (int a : anp_nodes) {
+    double v = 0;
+    for (int p = anp_.begin[a]; p < anp_.begin[a + 1]; ++p) v += 0.25 * volume_[anp_.element[p]];
+    anp_.volume[a] = v;
+    for (int p = anp_.begin[a]; p < anp_.begin[a + 1]; ++p)
+      anp_.weight[p] = v > 0 ? 0.25 * volume_[anp_.element[p]] / v : 0.0;
+  }
+  return done;
 }
 
 void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {

@@ -146,6 +146,18 @@ class ElementSet {
   // Approximate relative cost of one element of each kind (for balancing threads), tled = 1.
   static double relative_cost(ElementKind kind);
 
+  // ---- cutting by element removal ----
+  // Removes elements (original indices; ones already removed are skipped) by a local update,
+  // with nothing rebuilt: each one's slot keeps its place but loses its shape gradients and
+  // volume, so its kernel yields F = I, zero corner forces and zero energy (the tiles, thread
+  // ranges and node gathers stay as they are, adding zeros); a linear element's blocks leave
+  // the assembled rows; an ANP element leaves its corners' nodal volumes and weights. The
+  // element set then computes the forces of the mesh without those elements (to round-off).
+  // `mesh` is the mesh the set was built on. Returns the elements actually removed.
+  std::vector<int> remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements);
+  bool removed(int element) const { return removed_[element] != 0; }
+  int num_removed() const { return num_removed_; }
+
  private:
   void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats);
   bool computed_per_element(const Group& g) const { return g.kind != ElementKind::linear || !assembled_linear(); }
@@ -159,6 +171,9 @@ class ElementSet {
   Material material_;
   std::vector<ElementKind> kinds_;  // per original element
   std::vector<int> original_;       // internal slot -> original element (−1: padding)
+  std::vector<int> slot_of_;        // original element -> internal slot
+  std::vector<char> removed_;       // per original element: removed by a cut
+  int num_removed_ = 0;
   std::vector<Group> groups_;
   std::array<AlignedVector<int>, 4> node_offset_;  // 3 × node index of each corner
   std::array<AlignedVector<double>, 9> grad_;      // ∇N of corners 1..3 (x, y, z each)

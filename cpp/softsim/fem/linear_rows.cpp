@@ -34,26 +34,28 @@ LinearStiffnessRows::LinearStiffnessRows(const mesh::TetMesh& mesh, const std::v
 
   // Element blocks Kₑ (the linear element's 12 × 12 stiffness, the same function the static
   // solver assembles) added into their rows.
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    if (kinds[e] == ElementKind::linear) add_element(mesh, e, material, 1.0);
+}
+
+void LinearStiffnessRows::add_element(const mesh::TetMesh& mesh, int e, const Material& material, double sign) {
   const Corners zero{};
-  for (int e = 0; e < mesh.num_tets(); ++e) {
-    if (kinds[e] != ElementKind::linear) continue;
-    const ElementMatrix K = element_tangent(material, ElementKind::linear, tet_shape(mesh, e), zero);
-    const auto& t = mesh.tets[e];
-    for (int a = 0; a < 4; ++a) {
-      const int* first = neighbour_.data() + row_begin_[t[a]];
-      const int* last = neighbour_.data() + row_begin_[t[a] + 1];
-      for (int b = 0; b < 4; ++b) {
-        const std::size_t p = std::lower_bound(first, last, 3 * t[b]) - neighbour_.data();
-        double* block = block_.data() + 8 * p;
-        for (int row = 0; row < 3; ++row)
-          for (int col = 0; col < 3; ++col) {
-            const double k = K(3 * a + row, 3 * b + col);
-            if (row == 2 && col == 2)
-              k22_[p] += k;
-            else
-              block[kBlockSlot[row][col]] += k;
-          }
-      }
+  const ElementMatrix K = element_tangent(material, ElementKind::linear, tet_shape(mesh, e), zero);
+  const auto& t = mesh.tets[e];
+  for (int a = 0; a < 4; ++a) {
+    const int* first = neighbour_.data() + row_begin_[t[a]];
+    const int* last = neighbour_.data() + row_begin_[t[a] + 1];
+    for (int b = 0; b < 4; ++b) {
+      const std::size_t p = std::lower_bound(first, last, 3 * t[b]) - neighbour_.data();
+      double* block = block_.data() + 8 * p;
+      for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) {
+          const double k = sign * K(3 * a + row, 3 * b + col);
+          if (row == 2 && col == 2)
+            k22_[p] += k;
+          else
+            block[kBlockSlot[row][col]] += k;
+        }
     }
   }
 }

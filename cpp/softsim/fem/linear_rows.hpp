@@ -9,7 +9,8 @@
 // data path costs about as much as the TLED arithmetic itself (results/bench/summary.md). The
 // superposition the paper credits linear models with (000 §1) lets the region be assembled
 // once instead; a row then streams its blocks and reads each neighbour's displacement once.
-// The assembled matrix depends on the mesh topology, so a cut would have to rebuild it.
+// The assembled matrix depends on the mesh topology; a cut that removes a linear element
+// subtracts its blocks (remove_element), a local update.
 //
 // Storage: eight values of each block fill one 64-byte line and K_22 lives in a separate array;
 // the order of the eight is the one the build's vector kernel consumes without shuffling
@@ -53,6 +54,12 @@ class LinearStiffnessRows {
   double value(int block, int row, int col) const {
     return row == 2 && col == 2 ? k22_[block] : block_[8 * static_cast<std::size_t>(block) + kBlockSlot[row][col]];
   }
+  // Subtracts linear element e's blocks Kₑ (a cut removed it): the rows keep their pattern, the
+  // element's share leaves them (to round-off: (K + Kₑ) − Kₑ). A local update of 16 blocks.
+  void remove_element(const mesh::TetMesh& mesh, int e, const Material& material) {
+    add_element(mesh, e, material, -1.0);
+  }
+
   // Whether Kernel::best is a vector kernel (AVX-512 or AVX2) in this build.
   static bool vectorised();
 
@@ -69,6 +76,8 @@ class LinearStiffnessRows {
 #else
   static constexpr int kBlockSlot[3][3] = {{0, 1, 6}, {2, 3, 7}, {4, 5, -1}};
 #endif
+
+  void add_element(const mesh::TetMesh& mesh, int e, const Material& material, double sign);
 
   template <class Row>
   void for_each_row(const int* nodes_begin, const int* nodes_end, const double* u, double* f, Row row) const;

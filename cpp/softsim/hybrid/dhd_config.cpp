@@ -371,6 +371,8 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   c.threads = cfg.get_int32("threads", 1);
   cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");
   read_bench(cfg, c);
+  c.cuts = read_cuts(cfg, mesh);
+  if (!c.cuts.empty() && c.static_solver) cfg.fail_member("cuts", "an explicit solver (a cut is an event in time)");
   cfg.reject_unknown();
   return c;
 }

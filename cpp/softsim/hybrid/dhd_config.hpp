@@ -10,6 +10,7 @@
 #include "softsim/dynamics/static_solver.hpp"
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/hybrid/partition.hpp"
+#include "softsim/hybrid/cut_config.hpp"
 #include "softsim/io/json_reader.hpp"
 #include "softsim/io/vtu_writer.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
@@ -60,6 +61,7 @@ struct DhdConfig {
   OutputConfig output;
   int threads = 1;
   BenchConfig bench;
+  std::vector<CutSpec> cuts;  // explicit runs only
 };
 
 // A 3-vector member [x, y, z] of a config object (the scene readers built on this one use it too).

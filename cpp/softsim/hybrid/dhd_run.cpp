@@ -1,5 +1,6 @@
 #include "softsim/hybrid/dhd_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "softsim/dynamics/lumped_mass.hpp"
@@ -48,6 +49,10 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
   } else {
     run.step = scene.step_choice();
     run.explicit_result = scene.run(snapshot, progress);
+    run.cuts = scene.cut_events();
+    for (const auto& ev : run.cuts)
+      run.removed_elements.insert(run.removed_elements.end(), ev.report.elements.begin(), ev.report.elements.end());
+    std::sort(run.removed_elements.begin(), run.removed_elements.end());
   }
   run.kinds = scene.kinds();
   return run;
@@ -140,8 +145,27 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
     en["strain"].push_back(s.strain);
     en["external_work"].push_back(s.external_work);
     en["dissipated"].push_back(s.dissipated);
+    if (!c.cuts.empty()) en["removed"].push_back(s.removed);
   }
   p["energies"] = en;
+  if (!c.cuts.empty()) {
+    nlohmann::json cuts = nlohmann::json::array();
+    for (const auto& ev : run.cuts)
+      cuts.push_back({{"time", ev.time},
+                      {"step", ev.step},
+                      {"elements_removed", ev.report.elements.size()},
+                      {"mass_removed", ev.report.mass},
+                      {"strain_energy_removed", ev.report.strain_energy},
+                      {"kinetic_energy_removed", ev.report.kinetic_energy},
+                      {"detached_nodes", ev.report.detached_nodes},
+                      {"pieces", ev.pieces},
+                      {"loose_pieces", ev.loose_pieces},
+                      {"search_seconds", ev.search_seconds},
+                      {"update_seconds", ev.report.seconds},
+                      {"pieces_seconds", ev.pieces_seconds}});
+    p["cuts"] = cuts;
+    p["removed_elements"] = run.removed_elements;
+  }
   if (!c.output.trajectory_nodes.empty()) {
     nlohmann::json disp = nlohmann::json::array();
     for (const auto& tr : r.trajectories) {

@@ -11,6 +11,7 @@
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/dynamics/static_solver.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/hybrid/dhd_scene.hpp"
 
 namespace softsim::hybrid {
 
@@ -27,6 +28,8 @@ struct DhdRun {
   std::optional<dynamics::StaticResult> static_result;
   double setup_seconds = 0;  // critical step, element set and solver set-up (the partition excluded)
   double solve_seconds = 0;  // static runs: wall time of solve_static (0 for explicit runs)
+  std::vector<DhdScene::CutEvent> cuts;  // the cut events of the run (config "cuts")
+  std::vector<int> removed_elements;     // every element the cuts removed, ascending
 };
 
 // Throws InputError (bad step request, ...) or NumericalError (failure during the solve).

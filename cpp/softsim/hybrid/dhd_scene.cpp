@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "softsim/cutting/pieces.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/io/errors.hpp"
 
@@ -49,6 +50,9 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     options.adapt_step = !config_.explicit_solver.dt && config_.explicit_solver.dt_check_interval > 0;
     options.step_safety = config_.explicit_solver.safety_factor;
     options.step_check_interval = std::max(config_.explicit_solver.dt_check_interval, 1);
+    options.elements_removed = [d = deformed_step_.get()](const std::vector<int>& e) { d->remove(e); };
+    for (const auto& c : config_.cuts) options.event_times.push_back(c.time);
+    options.on_event = [this](int k) { cut(config_.cuts[k].sweep); };
     solver_ = std::make_unique<dynamics::ExplicitSolver>(
         *elements_, dynamics::lumped_mass(*mesh_, config_.material.elastic.density), config_.scene, options);
   }
@@ -87,6 +91,34 @@ Eigen::Vector3d DhdScene::probe_position() const {
 
 dynamics::ExplicitResult DhdScene::run(const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress) {
   return solver().run(snapshot, progress);
+}
+
+const DhdScene::CutEvent& DhdScene::cut(const cutting::BladeSweep& sweep) {
+  using Clock = std::chrono::steady_clock;
+  const std::string problem = cutting::sweep_problem(sweep);
+  if (!problem.empty()) throw InputError("cut: expected " + problem);
+  dynamics::ExplicitSolver& s = solver();
+  if (held_.empty()) {
+    held_.assign(mesh_->num_nodes(), 0);
+    for (const auto& c : config_.scene.constraints)
+      for (int node : c.nodes) held_[node] = 1;
+  }
+  CutEvent ev;
+  ev.time = s.time();
+  ev.step = s.steps_done();
+  const auto t0 = Clock::now();
+  const std::vector<int> crossed =
+      cutting::elements_crossed(*mesh_, s.displacement(), sweep, [&](int e) { return elements_->removed(e); });
+  ev.search_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  ev.report = s.remove_elements(*mesh_, crossed);
+  const auto t1 = Clock::now();
+  const cutting::Pieces pieces = cutting::find_pieces(
+      *mesh_, [&](int e) { return elements_->removed(e); }, [&](int node) { return held_[node] != 0; });
+  ev.pieces_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+  ev.pieces = pieces.count;
+  ev.loose_pieces = static_cast<int>(pieces.loose.size());
+  cut_events_.push_back(ev);
+  return cut_events_.back();
 }
 
 dynamics::StaticResult DhdScene::solve_static() const {

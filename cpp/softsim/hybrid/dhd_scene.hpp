@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "softsim/cutting/blade.hpp"
 #include "softsim/dynamics/explicit_solver.hpp"
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/dynamics/static_solver.hpp"
@@ -67,6 +68,21 @@ class DhdScene {
   // The whole configured run (config.explicit_solver.steps steps from t = 0), as dhd_sim runs it.
   dynamics::ExplicitResult run(const dynamics::SnapshotFn& snapshot = {}, const dynamics::ProgressFn& progress = {});
 
+  // ---- cutting by element removal (019) ----
+  struct CutEvent {
+    double time = 0;
+    int step = 0;
+    dynamics::CutReport report;  // what left, and the engine's local update time
+    int pieces = 0;              // connected pieces left after the cut
+    int loose_pieces = 0;        // of them, held by no constraint
+    double search_seconds = 0;   // finding the crossed elements
+    double pieces_seconds = 0;   // finding the pieces
+  };
+  // Between steps: the elements the sweep crosses in the current geometry are removed
+  // (ExplicitSolver::remove_elements). The config's "cuts" call it at their times.
+  const CutEvent& cut(const cutting::BladeSweep& sweep);
+  const std::vector<CutEvent>& cut_events() const { return cut_events_; }
+
   // ---- static equilibrium of the same model (000 eq. 24) ----
   dynamics::StaticResult solve_static() const;
 
@@ -78,6 +94,8 @@ class DhdScene {
   dynamics::StepChoice step_;
   std::unique_ptr<dynamics::DeformedCriticalStep> deformed_step_;
   std::unique_ptr<fem::ElementSet> elements_;
+  std::vector<CutEvent> cut_events_;
+  std::vector<char> held_;  // per node: some constraint holds it (for loose pieces)
   std::unique_ptr<dynamics::ExplicitSolver> solver_;
   double setup_seconds_ = 0;
 };
