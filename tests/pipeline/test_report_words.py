@@ -7,6 +7,7 @@ import json
 import numpy as np
 import pytest
 
+from conftest import ROOT
 from report_ctx import FakeContext, read_csv
 from pipeline import report_md
 from pipeline.reports import dhd_common as common
@@ -251,3 +252,43 @@ def test_table3_divides_each_rmse_by_its_own_plates_range(tmp_path):
     assert "below the paper's" in _table3_sentence(rel, "CV")
     header = read_csv(tmp_path / "fit_table3_rmse.csv")[0]
     assert "RMSE/range z (ours, %)" in header and "RMSE/range z (paper, %)" in header
+
+
+# --------------------------------------------------------------------------- end to end: a changed config
+def _small_table2(damping, steps, ramp_time=0.3, ramp="smooth"):
+    """experiments/dhd_table2.json's main and static stages on a 2 × 2 × 2-cell block, with the
+    damping, step count and ramp given: the real dhd_sim and the real report."""
+    doc = json.loads((ROOT / "experiments" / "dhd_table2.json").read_text())
+    stages = doc["stages"]
+    stages["mesh"]["config"]["source"]["cells"] = [2, 2, 2]
+    sim = stages["sim_layer"]
+    sim["config"]["damping"]["alpha"] = damping
+    sim["config"]["solver"]["steps"] = steps
+    sim["config"]["boundary"]["prescribed"][0].update(ramp_time=ramp_time, ramp=ramp)
+    sim["sweep"]["partition.linear_fraction"] = [0.0, 0.25, 0.5, 1.0]
+    table = stages["table"]
+    table["inputs"] = ["sim_layer", "static"]
+    table["params"].pop("transient")
+    del stages["sim_transient"]
+    doc["results"] = "dhd"
+    return doc
+
+
+def test_a_changed_config_changes_the_verdict_end_to_end(pipeline_env):
+    """The settled runs of the shipped config, then the same experiment with the push applied in
+    10 ms, no damping and a short run: the report's own check must find the runs unsettled and
+    the caption say so."""
+    from pathlib import Path
+    from conftest import run_pipeline
+    path = Path(pipeline_env["PIPELINE_EXPERIMENTS"]) / "dhd_table2.json"
+    results = Path(pipeline_env["PIPELINE_RESULTS"]) / "dhd"
+    path.write_text(json.dumps(_small_table2(damping=50, steps=1000)))
+    r = run_pipeline(pipeline_env, "run", "dhd_table2", "-j", "2")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert ", settled: within 1 % of Newton's static solution" in (results / "table2.md").read_text()
+    path.write_text(json.dumps(_small_table2(damping=0, steps=150, ramp_time=0.01, ramp="linear")))
+    r = run_pipeline(pipeline_env, "run", "dhd_table2", "-j", "2")
+    assert r.returncode == 0, r.stdout + r.stderr
+    text = (results / "table2.md").read_text()
+    assert "**not settled**" in text and "settled: within" not in text
+    assert "The runs of the tables have not settled" in (results / "sections" / "table2.md").read_text()
