@@ -63,8 +63,12 @@ def cmd_run(args) -> int:
     if args.stage and args.experiment == "all":
         raise ExperimentError("command line: --stage needs one experiment, not all")
     experiments = [experiment_mod.load(n) for n in names]
-    selected = [(exp, experiment_mod.closure(exp, args.stage) if args.stage else list(exp.runs))
+    selected = [(exp, experiment_mod.refresh(exp, args.stage) if args.stage else list(exp.runs))
                 for exp in experiments]
+    # A rerun stage that other experiments include by {"ref": ...}: their reports on it are
+    # refreshed too, once it has run (a second pass, so none of them reads it half-way).
+    followers = [(other, experiment_mod.refresh(other, stage))
+                 for other, stage in experiment_mod.sharing(experiments[0], args.stage)] if args.stage else []
     # A stopped pipeline stops what it started (its tools, a local cluster's workers).
     procs.stop_with_children(on_stop=cache.clean_stale)
     started = time.time()
@@ -72,14 +76,16 @@ def cmd_run(args) -> int:
     try:
         if executor.name != "local":
             print(f"pipeline: {executor.describe()}", flush=True)
-        executor.check_workers(_code_of(selected))
+        executor.check_workers(_code_of(selected + followers))
         _report_stale(executor.clean_stale())
         ready = time.time()
         ok = True
-        with progress_bar(sum(len(run_ids) for _, run_ids in selected)) as bar:
-            runner = Runner(force=args.force, force_stages=[args.stage] if args.stage else [],
+        with progress_bar(sum(len(run_ids) for _, run_ids in selected + followers)) as bar:
+            runner = Runner(force=args.force, force_stages=[(args.experiment, args.stage)] if args.stage else [],
                             echo=_progress_echo(bar), progress=bar, executor=executor)
             ok = runner.run_all(selected)
+            if followers:
+                ok = runner.run_all(followers) and ok
         _report_stale(executor.clean_stale())
         ran = time.time()
     finally:
@@ -90,13 +96,21 @@ def cmd_run(args) -> int:
             "executor": executor.name, "slots": executor.slots, "startup_s": round(ready - started, 3),
             "runs_s": round(ran - ready, 3), "total_s": round(time.time() - started, 3),
             "runs": runner.timings()})
-    write_manifest(runner, experiments, complete=args.experiment == "all" and not args.stage)
+    complete = args.experiment == "all" and not args.stage
+    write_manifest(runner, experiments + [other for other, _ in followers], complete=complete,
+                   command=_command_line(args))
     report_md.assemble()
     counts = {}
     for o in runner.outcomes.values():
         counts[o.status] = counts.get(o.status, 0) + 1
     print("pipeline: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items())), flush=True)
     return 0 if ok else 1
+
+
+def _command_line(args) -> str:
+    """How REPORT.md names the run that last wrote results (without executor options)."""
+    return "pipeline run " + args.experiment + (f" --stage {args.stage}" if args.stage else "") + \
+        (" --force" if args.force else "")
 
 
 def _report_stale(counted) -> None:
@@ -109,7 +123,9 @@ def cmd_list(_args) -> int:
     for name in experiment_mod.list_experiments():
         try:
             exp = experiment_mod.load(name)
-            stages = ", ".join(f"{s}({len(r)})" if len(r) > 1 else s for s, r in exp.stage_runs.items())
+            stages = ", ".join((f"{s}({len(r)})" if len(r) > 1 else s)
+                               + (f" = {exp.origins[s]}" if s in exp.origins else "")
+                               for s, r in exp.stage_runs.items())
             print(f"{name:28s} {exp.doc.get('description', '')}\n{'':28s} stages: {stages}")
         except ExperimentError as e:
             print(f"{name:28s} INVALID: {e}")
@@ -151,7 +167,9 @@ def main(argv) -> int:
     sub = parser.add_subparsers(dest="command", required=True)
     p_run = sub.add_parser("run", help="run an experiment (or all)")
     p_run.add_argument("experiment", help="an experiment name (experiments/NAME.json) or all")
-    p_run.add_argument("--stage", help="rerun this stage (its dependencies come from the cache, or run first)")
+    p_run.add_argument("--stage", help="rerun this stage (its dependencies come from the cache, or run first) and "
+                                       "refresh what depends on it: the reports built on it, here and in the "
+                                       "experiments that include it by ref")
     p_run.add_argument("--force", action="store_true", help="rerun every selected run")
     p_run.add_argument("-j", "--jobs", type=int, default=None,
                        help="parallel runs (default 1); with --executor dask-local the number of worker "

@@ -4,6 +4,9 @@ A stage is one of three kinds (see pipeline/EXPERIMENTS.md):
   tool    a C++ executable of build/bin        -> one artifact per run
   python  a module with run(ctx)               -> one artifact per run
   report  a module with report(ctx)            -> tables and plots in results/<results>/
+A stage may instead be {"ref": "experiment.stage"}, another experiment's stage verbatim, and a
+config may use {"shared": NAME}, a fragment of the experiment's "shared" block: one definition
+for what several stages or experiments must agree on.
 """
 import copy
 import itertools
@@ -17,7 +20,8 @@ from pipeline.errors import ExperimentError
 from pipeline.paths import EXPERIMENTS
 
 REF = re.compile(r"^@([A-Za-z0-9_\-]+)(?:#(\d+))?$")
-TOP_KEYS = {"description", "results", "paper", "stages", "notes"}
+TOP_KEYS = {"description", "results", "paper", "stages", "notes", "shared"}
+STAGE_REF = re.compile(r"^([A-Za-z0-9_\-]+)\.([A-Za-z0-9_\-]+)$")
 STAGE_KEYS = {
     "tool": {"tool", "config", "sweep", "mode", "args", "exclusive", "description"},
     "python": {"python", "config", "sweep", "exclusive", "description"},
@@ -54,6 +58,8 @@ class Experiment:
     doc: Dict[str, Any]
     runs: Dict[str, Run]           # run id -> run, in file order
     stage_runs: Dict[str, List[str]]
+    # stage -> "experiment.stage" it is defined by, for the stages declared {"ref": ...}
+    origins: Dict[str, str] = field(default_factory=dict)
 
     @property
     def results_subdir(self) -> str:
@@ -117,8 +123,7 @@ def list_experiments() -> List[str]:
     return sorted(p.stem for p in EXPERIMENTS.glob("*.json"))
 
 
-def load(name: str) -> Experiment:
-    path = EXPERIMENTS / f"{name}.json"
+def _read_doc(path: Path) -> dict:
     if not path.exists():
         known = ", ".join(list_experiments())
         raise ExperimentError(f"{path.name}: no such experiment (known: {known})")
@@ -134,6 +139,74 @@ def load(name: str) -> Experiment:
     stages = doc.get("stages")
     if not isinstance(stages, dict) or not stages:
         _fail(path, "/stages", "expected a non-empty object of stages")
+    shared = doc.get("shared", {})
+    if not isinstance(shared, dict):
+        _fail(path, "/shared", "expected an object of named config fragments")
+    return doc
+
+
+def _expand_shared(value, shared: dict, path, pointer):
+    """Replaces every {"shared": NAME} inside a config by a copy of the experiment's fragment
+    shared[NAME]: one definition of settings several stages must agree on (pipeline/EXPERIMENTS.md)."""
+    if isinstance(value, dict):
+        if set(value) == {"shared"}:
+            name = value["shared"]
+            if not isinstance(name, str) or name not in shared:
+                _fail(path, pointer + "/shared", f"expected the name of a fragment of /shared "
+                      f"({', '.join(sorted(shared)) or 'none defined'}), got {name!r}")
+            return copy.deepcopy(shared[name])
+        return {k: _expand_shared(v, shared, path, f"{pointer}/{k}") for k, v in value.items()}
+    if isinstance(value, list):
+        return [_expand_shared(v, shared, path, f"{pointer}/{i}") for i, v in enumerate(value)]
+    return value
+
+
+def _with_shared(spec, shared: dict, path, pointer):
+    if isinstance(spec, dict) and "config" in spec:
+        spec = dict(spec, config=_expand_shared(spec["config"], shared, path, f"{pointer}/config"))
+    return spec
+
+
+def _resolve_stage_ref(spec: dict, path, pointer, chain=()):
+    """The definition of a stage declared {"ref": "experiment.stage"}: that experiment's stage,
+    verbatim (its "@stage" references then name stages of the experiment that includes it), with
+    that experiment's shared fragments expanded; a chain of refs is followed. Returns
+    (definition, "experiment.stage" of the definition)."""
+    for k in spec:
+        if k not in ("ref", "description"):
+            _fail(path, f"{pointer}/{k}", "unknown field for a stage declared by \"ref\" (only \"description\")")
+    target = spec["ref"]
+    m = STAGE_REF.match(target) if isinstance(target, str) else None
+    if not m:
+        _fail(path, f"{pointer}/ref", f"expected \"experiment.stage\", got {target!r}")
+    if target in chain:
+        _fail(path, f"{pointer}/ref", "expected no cycle of stage refs, got " + " -> ".join(chain + (target,)))
+    other_path = EXPERIMENTS / f"{m.group(1)}.json"
+    if not other_path.exists():
+        _fail(path, f"{pointer}/ref", f"expected an experiment of experiments/, got {m.group(1)!r}")
+    other = _read_doc(other_path)
+    if m.group(2) not in other["stages"]:
+        _fail(path, f"{pointer}/ref", f"expected a stage of {other_path.name}, got {m.group(2)!r}")
+    found = other["stages"][m.group(2)]
+    if isinstance(found, dict) and "ref" in found:
+        return _resolve_stage_ref(found, other_path, f"/stages/{m.group(2)}", chain + (target,))
+    if not isinstance(found, dict) or "report" in found:
+        _fail(path, f"{pointer}/ref", f"expected a tool or python stage, {target} is not one")
+    return _with_shared(found, other.get("shared", {}), other_path, f"/stages/{m.group(2)}"), target
+
+
+def load(name: str) -> Experiment:
+    path = EXPERIMENTS / f"{name}.json"
+    doc = _read_doc(path)
+    shared = doc.get("shared", {})
+    origins: Dict[str, str] = {}
+    stages = {}
+    for stage, spec in doc["stages"].items():
+        if isinstance(spec, dict) and "ref" in spec:
+            resolved, origins[stage] = _resolve_stage_ref(spec, path, f"/stages/{stage}")
+            stages[stage] = dict(resolved, **({"description": spec["description"]} if "description" in spec else {}))
+        else:
+            stages[stage] = _with_shared(spec, shared, path, f"/stages/{stage}")
 
     runs: Dict[str, Run] = {}
     stage_runs: Dict[str, List[str]] = {}
@@ -220,7 +293,7 @@ def load(name: str) -> Experiment:
                     _fail(path, f"/stages/{run.stage}/config", f"@{stage}#{idx} names no run")
                 run.deps.append(f"{stage}#{idx}")
     _check_acyclic(path, runs)
-    return Experiment(name, path, doc, runs, stage_runs)
+    return Experiment(name, path, doc, runs, stage_runs, origins)
 
 
 def _check_acyclic(path, runs: Dict[str, Run]):
@@ -244,7 +317,29 @@ def closure(exp: Experiment, stage: str) -> List[str]:
     """Run ids needed for `stage`: its runs and, transitively, their dependencies."""
     if stage not in exp.stage_runs:
         raise ExperimentError(f"{exp.path.name}: no stage {stage!r} (stages: {', '.join(exp.stage_runs)})")
-    needed, todo = set(), list(exp.stage_runs[stage])
+    return closure_of_runs(exp, exp.stage_runs[stage])
+
+
+def refresh(exp: Experiment, stage: str) -> List[str]:
+    """Run ids of `pipeline run NAME --stage S`: the stage with what it needs (closure) and every
+    run that depends on it, transitively, with what those need: the reports built on the stage
+    are refreshed with it (each reruns only when its key, which holds its inputs' content, says so)."""
+    needed = set(closure(exp, stage))
+    changed = set(exp.stage_runs[stage])
+    grew = True
+    while grew:
+        grew = False
+        for rid, run in exp.runs.items():
+            if rid not in changed and any(d in changed for d in run.deps):
+                changed.add(rid)
+                grew = True
+    for rid in changed:
+        needed.update(closure_of_runs(exp, [rid]))
+    return [rid for rid in exp.runs if rid in needed]
+
+
+def closure_of_runs(exp: Experiment, run_ids: List[str]) -> List[str]:
+    needed, todo = set(), list(run_ids)
     while todo:
         rid = todo.pop()
         if rid in needed:
@@ -252,3 +347,26 @@ def closure(exp: Experiment, stage: str) -> List[str]:
         needed.add(rid)
         todo.extend(exp.runs[rid].deps)
     return [rid for rid in exp.runs if rid in needed]
+
+
+def origin(exp: Experiment, stage: str) -> str:
+    """"experiment.stage" that defines `stage` of `exp`: itself, or what its ref names."""
+    return exp.origins.get(stage, f"{exp.name}.{stage}")
+
+
+def sharing(exp: Experiment, stage: str) -> List[tuple]:
+    """The other experiments' stages defined by the same stage as `stage` of `exp` (through
+    {"ref": ...}), as [(experiment, stage)]: rerunning one refreshes the others' reports."""
+    want = origin(exp, stage)
+    out = []
+    for name in list_experiments():
+        if name == exp.name:
+            continue
+        try:
+            other = load(name)
+        except ExperimentError:
+            continue
+        for s in other.stage_runs:
+            if origin(other, s) == want:
+                out.append((other, s))
+    return out

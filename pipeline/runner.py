@@ -105,7 +105,7 @@ class Runner:
         self.executor = executor if executor is not None else LocalExecutor(jobs)
         self.jobs = max(1, self.executor.slots)
         self.force = force
-        self.force_stages = set(force_stages)
+        self.force_stages = set(force_stages)   # (experiment name, stage) pairs
         self.echo = echo
         # Anything with update(n) (a tqdm bar): told of every finished run, whatever its outcome.
         self.progress = progress
@@ -166,7 +166,7 @@ class Runner:
         start = time.time()
         code = self._code_hash(run)
         key = self.key_of(exp, run, code)
-        forced = self.force or run.stage in self.force_stages
+        forced = self.force or (exp.name, run.stage) in self.force_stages
         log_path = LOGS / f"{exp.name}.{run.id.replace('#', '.')}.log"
         if run.kind == "report":
             stamp = STAMPS / f"{exp.name}.{run.stage}.json"
@@ -311,20 +311,28 @@ class Runner:
         return out
 
 
-def write_manifest(runner: Runner, experiments, complete: bool = False) -> None:
-    """results/manifest.json: every run's key, config and artifact hash. A run of a subset of
-    the experiments keeps the other experiments' entries; a complete run starts afresh."""
+def write_manifest(runner: Runner, experiments, complete: bool = False, command: str = "") -> None:
+    """results/manifest.json: every run's key, config and artifact hash, and which command at
+    which commit last ran each experiment ("last_run"; REPORT.md says whose results it shows). A
+    run of a subset of the experiments keeps the other experiments' entries; a complete run
+    starts afresh."""
     path = RESULTS / "manifest.json"
-    manifest = {"git_commit": git_commit(), "experiments": {}}
+    commit = git_commit()
+    manifest = {"git_commit": commit, "command": command, "complete": complete, "experiments": {},
+                "last_run": {}}
     if path.exists() and not complete:
         try:
-            manifest["experiments"] = json.loads(path.read_text()).get("experiments", {})
+            old = json.loads(path.read_text())
+            manifest["experiments"] = old.get("experiments", {})
+            manifest["last_run"] = old.get("last_run", {})
         except json.JSONDecodeError:
             pass
     for exp in experiments:
         entries = runner.manifest_entries(exp)
         if entries:
             manifest["experiments"][exp.name] = entries
+            manifest["last_run"][exp.name] = {"commit": commit, "command": command}
     known = set(experiment_mod.list_experiments())
-    manifest["experiments"] = dict(sorted((k, v) for k, v in manifest["experiments"].items() if k in known))
+    for block in ("experiments", "last_run"):
+        manifest[block] = dict(sorted((k, v) for k, v in manifest[block].items() if k in known))
     write_json_atomic(path, manifest)

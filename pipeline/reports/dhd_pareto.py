@@ -33,16 +33,24 @@ def paper_points(paper: dict):
     return out
 
 
+def paper_table_names(paper: dict) -> dict:
+    """{applied: "Table n"}: which table of the paper gives the error at each applied
+    displacement, from the block's own keys (table2, table3)."""
+    return {t["applied_displacement"]: f"Table {name[len('table'):]}" for name, t in paper.items()
+            if name in ("table2", "table3") and isinstance(t, dict) and "applied_displacement" in t}
+
+
 def report(ctx):
     unit, unit_scale = common.display_unit(ctx)
     data = family_rows(ctx, ctx.params["stages"])
     labels = list(data)
     loads = sorted({load for fam in data.values() for load in fam})
     paper = paper_points(ctx.experiment.get("paper", {}))
+    table_names = paper_table_names(ctx.experiment.get("paper", {}))
     uniform, mixed = common.cost_model(ctx.runs(ctx.params.get("timing", "timing"))[0].payload)
     t_tled = uniform["tled"]
 
-    fig, axes = plots.plt.subplots(1, len(loads), figsize=(5.4 * len(loads), 4.4), dpi=110, squeeze=False)
+    fig, axes = plots.plt.subplots(1, len(loads), figsize=(5.4 * len(loads), 5.4), dpi=110, squeeze=False)
     front_rows = []
     words = []
     for ax, load in zip(axes[0], loads):
@@ -65,13 +73,13 @@ def report(ctx):
                     else label)
             front_rows.append([f"{fmt(load * unit_scale)} {unit}", name, f"{int(round(100 * x['r']))} %",
                                t, x["model_seconds_per_step"] * 1e6, common.pct(e, 2)])
-        pp = None
+        pp, table = None, None
         for applied, ppts in paper.items():
             if abs(applied - load * unit_scale) < 1e-9:
-                pp = ppts
+                pp, table = ppts, table_names[applied]
         if pp:
             ax.plot([p[0] for p in pp], [100 * p[1] for p in pp], "kD", mfc="none", ms=6,
-                    label="paper (Tables 1 + %d)" % (2 if abs(load * unit_scale - 0.6) < 1e-9 else 3))
+                    label=f"paper (Table 1 + {table})")
             for t, e, r in pp:
                 ax.annotate(f"{r}%", (t, 100 * e), textcoords="offset points", xytext=(4, 3), fontsize=6)
         ax.set_yscale("symlog", linthresh=0.01)
@@ -80,6 +88,9 @@ def report(ctx):
         ax.set_ylabel("mean error e (%)")
         ax.set_title(f"top centre displaced by {fmt(load * unit_scale)} {unit}", fontsize=9)
         ax.grid(True, alpha=0.3)
+        # Each panel its own legend (the paper's points come from a different table per load),
+        # below the axes so that it hides no point.
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3)
         fam_on_front = {}
         for i in front:
             x = pts[i][3]
@@ -89,7 +100,6 @@ def report(ctx):
                      "all-linear at its ends): "
                      + ", ".join(f"{v} from {k}" for k, v in sorted(fam_on_front.items(), key=lambda kv: -kv[1]))
                      + ".")
-    axes[0][0].legend(fontsize=7, loc="upper right")
     common.save(fig, ctx, "pareto.png")
     md = write_table(ctx, "pareto_front", ["applied", "family", "r", "time per step / all-TLED",
                                            "time per step (µs, model)", "e (%)"], front_rows,

@@ -4,14 +4,20 @@ table2_3_transient.*, table2_3_metrics.csv, table2_3_error.png and the "table2" 
 summary.md.
 
 Inputs (params name them):
-  sim        dhd_sim swept over the share r × the applied displacement, settled runs (main tables)
+  sim        dhd_sim swept over the share r × the applied displacement (main tables), meant to
+             settle: the report checks it against `static` before it calls the runs settled
   static     the static solutions of some (r, load) pairs: how far the last step is from equilibrium
-  transient  the paper's literal reading — displacement applied at once, little damping — swept
-             over the damping α as well: the error after 1000 steps of an unsettled motion"""
-import numpy as np
+  transient  the paper's literal reading — displacement applied fast, little damping — swept
+             over the damping α as well: the error after the last step, moving or not
+  settled_within  the largest e against the static solution that still counts as settled
+             (default dhd_table2_words.SETTLED_WITHIN)
+
+Every sentence that states a fact (settled, the trend with r, the paper's trend, the literal
+reading) is computed in dhd_table2_words from the runs and the paper block."""
 
 from pipeline import plots
 from pipeline.reports import dhd_common as common
+from pipeline.reports import dhd_table2_words as words_mod
 from pipeline.tables import fmt, write_table
 
 METRIC_KEYS = ("rel_mean", "rel_applied", "rel_rms", "rel_max", "rel_per_node", "mean_diff", "max_diff", "mean_ref")
@@ -28,10 +34,6 @@ def paper_tables(ctx):
     return out
 
 
-def _count_word(n: int) -> str:
-    return {2: "two", 3: "three", 4: "four", 5: "five", 6: "six"}.get(n, str(n))
-
-
 def _paper_for(paper, load, unit_scale):
     return next((v for k, v in paper.items() if abs(k - load * unit_scale) < 1e-9), {})
 
@@ -45,7 +47,13 @@ def report(ctx):
     loads = sorted(by_load)
     steps = by_load[loads[0]][0]["run"].payload["solver"]["steps"]
 
-    # ---- the main tables (settled state)
+    # ---- how far the runs are from the static solutions: what the captions and words may claim
+    static = _static_rows(ctx)
+    tolerance = float(ctx.params.get("settled_within", words_mod.SETTLED_WITHIN))
+    state = words_mod.settle_state(_against_static(by_load, static), tolerance)
+    state_word = words_mod.state_word(state, steps)
+
+    # ---- the main tables
     headers = ["share of linear elements r", "linear elements", "TLED elements", "mean error e (ours, %)",
                "mean error (paper, %)", "mean |Δu| (µm)", "max |Δu| (µm)", "mean |Δu| / applied (%)"]
     md_tables = []
@@ -59,7 +67,8 @@ def report(ctx):
                          ref_paper.get(rp), g["error"]["mean_diff"] * 1e6, g["error"]["max_diff"] * 1e6,
                          common.pct(g["error"]["rel_applied"], 3)])
         caption = (f"**Table {n + 2}: DHD-FEA vs. all-TLED, top centre pushed down {fmt(load * unit_scale)} {unit}**, "
-                   f"layer split (the lowest elements linear, 000 Fig. 10), {steps} steps, settled state. "
+                   f"layer split (the lowest elements linear, 000 Fig. 10), "
+                   f"{words_mod.settle_caption(state, steps, unit_scale, unit)}. "
                    "e = Σ_nodes |u − u_TLED| / Σ_nodes |u_TLED| (experiments/dhd.md). The paper's column is "
                    f"copied from 000 Table {n + 2} ('Mean Error', displacement {fmt(load * unit_scale)} in an "
                    "unstated unit).")
@@ -88,14 +97,21 @@ def report(ctx):
                                if r in transient.get((a, load), {}) else None for a in alphas]
                             + [ref_paper.get(r)])
         ramp = rows[0]["run"].config["boundary"]["prescribed"][0]
+        transient_steps = rows[0]["run"].payload["solver"]["steps"]
+        # Is the block still moving at the sampled step? The all-TLED run of each damping against
+        # the static solution of the same load.
+        moving = {a: max((v for v in (_static_distance(transient.get((a, load), {}).get(0), static, load)
+                                      for load in loads) if v is not None), default=None) for a in alphas}
+        motion = "; ".join(f"α = {fmt(a)}: {fmt(100 * m, 2)} %" for a, m in moving.items() if m is not None)
         transient_md = write_table(
             ctx, "table2_3_transient",
             ["applied", "r"] + [f"e, α = {fmt(a)} 1/s (%)" for a in alphas]
             + [f"per-node mean, α = {fmt(a)} (%)" for a in alphas] + ["paper (%)"], body,
-            f"**Tables 2–3 read literally**: the displacement applied at once ({fmt(ramp['ramp_time'] * 1e3)} ms "
-            f"{ramp['ramp']} ramp, the shortest a 1 cm push of one node survives without inverting the element "
-            f"below it), light or no damping α, error after {steps} steps while the block still vibrates. The "
-            "per-node mean is the mean over moving nodes of |Δu|/|u_TLED|. The paper's column: 000 Tables 2–3.")
+            f"**Tables 2–3 read literally**: the displacement applied over a {fmt(ramp['ramp_time'] * 1e3)} ms "
+            f"{ramp['ramp']} ramp, damping α as in the columns, error after {transient_steps} steps"
+            + (f" (distance of the all-TLED run from the static solution then, largest over the loads: {motion})"
+               if motion else "") + ". The per-node mean is the mean over moving nodes of |Δu|/|u_TLED|. "
+            "The paper's column: 000 Tables 2–3.")
 
     # ---- every normalisation
     metric_rows = [[load * unit_scale, g["r"], g["cheap_elements"]] + [g["error"][k] for k in METRIC_KEYS]
@@ -105,24 +121,12 @@ def report(ctx):
                  "max ratio", "mean per-node ratio", "mean |Δu| (m)", "max |Δu| (m)", "mean |u_TLED| (m)"],
                 metric_rows, "Every error normalisation of Tables 2–3, settled runs (fractions, not percent).")
 
-    # ---- settling check against the static solutions
-    settle = []
-    sstage = ctx.params.get("static")
-    if sstage:
-        static = {(round(g["applied"], 12), g["cheap_elements"]): g for g in common.sim_rows(ctx, sstage)}
-        for load in loads:
-            for g in by_load[load]:
-                s = static.get((load, g["cheap_elements"]))
-                if s is not None:
-                    e = common.displacement_error(common.displacement(g["run"]), common.displacement(s["run"]))
-                    settle.append((load, g["r"], e["rel_mean"]))
-
     # ---- plot
     fig, ax = plots.figure(6.6, 4.4)
     for n, load in enumerate(loads):
         g = [x for x in by_load[load] if x["r"] > 0]   # r = 0 is the reference (zero on a log axis)
         ax.plot([100 * x["r"] for x in g], [100 * x["error"]["rel_mean"] for x in g], "o-", color=f"C{n}",
-                label=f"ours, settled, {fmt(load * unit_scale)} {unit}")
+                label=f"ours, {state_word}, {fmt(load * unit_scale)} {unit}")
         if transient:
             a0 = min(a for a, _ in transient)
             t = {r: v for r, v in transient.get((a0, load), {}).items() if r > 0}
@@ -139,54 +143,62 @@ def report(ctx):
     ax.legend(fontsize=7)
     common.save(fig, ctx, "table2_3_error.png")
 
-    # ---- plain words
+    # ---- plain words, every claim computed from the runs and the paper block
     words = []
     for load in loads:
         g = {int(round(100 * x["r"])): x for x in by_load[load]}
         p = _paper_for(paper, load, unit_scale)
         if p:
             ours = ", ".join(f"{fmt(100 * g[k]['error']['rel_mean'], 2)} %" for k in sorted(p) if k in g)
-            words.append(f"At {fmt(load * unit_scale)} {unit} and r = {common.share_range(sorted(p))} % our settled error is {ours}; the paper "
-                         f"reports {', '.join(f'{v} %' for v in p.values())}.")
+            words.append(f"At {fmt(load * unit_scale)} {unit} and r = {common.share_range(sorted(p))} % our error "
+                         f"({state_word}) is {ours}; the paper reports {', '.join(f'{v} %' for v in p.values())}.")
         full = g.get(100)
         if full:
-            words.append(f"Even all-linear (r = 100 %) differs from all-TLED by only "
-                         f"{fmt(100 * full['error']['rel_mean'], 3)} % there.")
+            words.append(f"All-linear (r = 100 %) differs from all-TLED by {fmt(100 * full['error']['rel_mean'], 3)} % "
+                         "there.")
+    trend = _trend(by_load, paper, loads, unit_scale)
     if len(loads) >= 2:
-        a, b = loads[0], loads[1]
-        ea = {round(x["r"], 6): x["error"]["rel_mean"] for x in by_load[a]}
-        eb = {round(x["r"], 6): x["error"]["rel_mean"] for x in by_load[b]}
-        rs = [r for r in ea if r in eb and r > 0]
-        words.append(f"The larger displacement gives the larger error at {sum(eb[r] > ea[r] for r in rs)} of {len(rs)} "
-                     f"shares (the paper: at all {_count_word(len(paper_shares))}), and the error grows with r "
-                     + ("monotonically" if all(np.all(np.diff([x["error"]["rel_mean"] for x in by_load[l]]) >= 0)
-                                              for l in loads) else "but not monotonically") + ", as in the paper.")
-    if settle:
-        worst = max(settle, key=lambda s: s[2])
-        words.append(f"The settled runs are static solutions for practical purposes: against Newton's static solution "
-                     f"the largest difference is {fmt(100 * worst[2], 2)} % (r = {fmt(100 * worst[1])} %, "
-                     f"{fmt(worst[0] * unit_scale)} {unit}).")
+        words.append(words_mod.load_clause(trend["larger"], trend["shares"], trend["paper_larger"],
+                                           trend["paper_shares"]) + "; "
+                     + words_mod.trend_clause(trend["ours_grow"], trend["ours_fall"], trend["paper_grow"]) + ".")
+    else:
+        words.append(words_mod.trend_clause(trend["ours_grow"], trend["ours_fall"], trend["paper_grow"])
+                     .capitalize() + ".")
+    words.append(words_mod.settle_sentence(state, unit_scale, unit))
+    transient_facts = {}
     if transient:
         a0 = min(a for a, _ in transient)
         t = transient.get((a0, loads[0]), {})
         p = _paper_for(paper, loads[0], unit_scale)
         shared = [r for r in sorted(p) if r in t and t[r]["error"]["rel_mean"] > 0]
         if shared:
-            ratios = [p[r] / (100 * t[r]["error"]["rel_mean"]) for r in shared]
-            words.append(f"Read literally (displacement at once, α = {fmt(a0)}), the error after {steps} steps at "
-                         f"{fmt(loads[0] * unit_scale)} {unit} is "
-                         + ", ".join(f"{fmt(100 * t[r]['error']['rel_mean'], 2)} %" for r in shared)
-                         + f" for r = {shared[0]}–{shared[-1]} %, {fmt(min(ratios), 2)}–{fmt(max(ratios), 2)} times below "
-                         "the paper's but growing with r the same way: there the error is mostly the phase drift of two "
-                         "vibrating bodies of slightly different stiffness, so it depends on the damping and on the step "
-                         "at which it is sampled, which the paper does not give.")
+            tvals = [t[r]["error"]["rel_mean"] for r in shared]
+            ratios = [p[r] / (100 * v) for r, v in zip(shared, tvals)]
+            g = {int(round(100 * x["r"])): x for x in by_load[loads[0]]}
+            settled_share = max(g[r]["error"]["rel_mean"] / t[r]["error"]["rel_mean"] for r in shared if r in g) \
+                if state and state["settled"] and all(r in g for r in shared) else None
+            t_grow = words_mod.grows(tvals)
+            p_grow = words_mod.grows([p[r] for r in shared])
+            words.append(f"Read literally ({fmt(ramp['ramp_time'] * 1e3)} ms ramp, α = {fmt(a0)}), the error after "
+                         f"{transient_steps} steps at {fmt(loads[0] * unit_scale)} {unit} is "
+                         + ", ".join(f"{fmt(100 * v, 2)} %" for v in tvals)
+                         + f" for r = {shared[0]}–{shared[-1]} %, {words_mod.ratio_clause(ratios)}, "
+                         + ("growing with r as the paper's does." if t_grow and p_grow else
+                            "growing with r while the paper's does not." if t_grow else
+                            "not growing at every share, unlike the paper's." if p_grow else
+                            "not growing at every share, nor does the paper's.")
+                         + words_mod.transient_why(moving.get(a0), tolerance, settled_share))
+            transient_facts = {"alpha": a0, "grows": t_grow, "moving": moving.get(a0) is not None
+                               and moving[a0] > tolerance}
     lines = ["### Tables 2–3: error against the share of linear elements\n"] + md_tables
     if transient_md:
         lines.append(transient_md)
     lines.append("Plot: [dhd/table2_3_error.png](dhd/table2_3_error.png); every normalisation: "
                  "[dhd/table2_3_metrics.csv](dhd/table2_3_metrics.csv).\n")
-    lines.append(" ".join(words) + "\n")
-    facts = {"settled_10_40": {}, "paper_10_40": {}, "transient_10_40": {}, "larger_load_larger": None}
+    lines.append(" ".join(w for w in words if w) + "\n")
+    facts = {"settled_10_40": {}, "paper_10_40": {}, "transient_10_40": {}, "larger_load_larger": None,
+             "settled": bool(state and state["settled"]), "state": state_word, "ours_grow": trend["ours_grow"],
+             "paper_grow": trend["paper_grow"], "paper_larger_load_larger": None, "transient": transient_facts}
     for load in loads:
         label = f"{fmt(load * unit_scale)} {unit}"
         g = {int(round(100 * x["r"])): x for x in by_load[load]}
@@ -198,7 +210,62 @@ def report(ctx):
             t = transient.get((min(a for a, _ in transient), load), {})
             facts["transient_10_40"][label] = [100 * t[r]["error"]["rel_mean"] for r in paper_shares if r in t]
     if len(loads) >= 2:
+        facts["larger_load_larger"] = trend["larger"] == trend["shares"]
+        if trend["paper_larger"] is not None:
+            facts["paper_larger_load_larger"] = trend["paper_larger"] == trend["paper_shares"]
+    common.write_section(ctx, "table2", "\n".join(lines), facts)
+
+
+def _static_rows(ctx) -> dict:
+    """{(load, cheap elements): row} of the static stage (params "static"), {} without one."""
+    stage = ctx.params.get("static")
+    if not stage:
+        return {}
+    return {(round(g["applied"], 12), g["cheap_elements"]): g for g in common.sim_rows(ctx, stage)}
+
+
+def _static_distance(row, static: dict, load) -> float:
+    """e of a run against the static solution of the same load and split; None without one."""
+    if row is None:
+        return None
+    s = static.get((round(load, 12), row["cheap_elements"]))
+    if s is None:
+        return None
+    return common.displacement_error(common.displacement(row["run"]), common.displacement(s["run"]))["rel_mean"]
+
+
+def _against_static(by_load, static) -> list:
+    """[(load, r, e against the static solution)] of every main run that has a static counterpart."""
+    out = []
+    for load, group in by_load.items():
+        for g in group:
+            e = _static_distance(g, static, load)
+            if e is not None:
+                out.append((load, g["r"], e))
+    return out
+
+
+def _trend(by_load, paper, loads, unit_scale) -> dict:
+    """Whether the error grows with r (ours over every share, the paper's over its shares) and how
+    often the larger load gives the larger error (ours over the shared shares r > 0, the paper's)."""
+    ours_grow, ours_fall = True, None
+    for load in loads:
+        rs = [int(round(100 * x["r"])) for x in by_load[load]]
+        es = [x["error"]["rel_mean"] for x in by_load[load]]
+        if not words_mod.grows(es):
+            ours_grow, ours_fall = False, ours_fall or words_mod.first_fall(rs, es)
+    tables = [_paper_for(paper, load, unit_scale) for load in loads]
+    tables = [t for t in tables if t]
+    paper_grow = all(words_mod.grows([t[r] for r in sorted(t)]) for t in tables) if tables else None
+    out = {"ours_grow": ours_grow, "ours_fall": ours_fall, "paper_grow": paper_grow, "larger": 0, "shares": 0,
+           "paper_larger": None, "paper_shares": 0}
+    if len(loads) >= 2:
         ea = {round(x["r"], 6): x["error"]["rel_mean"] for x in by_load[loads[0]]}
         eb = {round(x["r"], 6): x["error"]["rel_mean"] for x in by_load[loads[1]]}
-        facts["larger_load_larger"] = all(eb[r] > ea[r] for r in ea if r in eb and r > 0)
-    common.write_section(ctx, "table2", "\n".join(lines), facts)
+        rs = [r for r in ea if r in eb and r > 0]
+        out["larger"], out["shares"] = sum(eb[r] > ea[r] for r in rs), len(rs)
+        pa, pb = _paper_for(paper, loads[0], unit_scale), _paper_for(paper, loads[1], unit_scale)
+        if pa and pb:
+            shared = [r for r in pa if r in pb]
+            out["paper_larger"], out["paper_shares"] = sum(pb[r] > pa[r] for r in shared), len(shared)
+    return out

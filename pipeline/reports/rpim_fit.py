@@ -16,6 +16,7 @@ import numpy as np
 
 from pipeline.paths import RESULTS
 from pipeline.plots import figure, save
+from pipeline.reports.rpim_cv import describe_settings, settings_note, used_by_fit
 from pipeline.tables import fmt, write_table
 
 AXES = "xyz"
@@ -143,28 +144,71 @@ def _coefficient_tables(ctx, fit, paper, name, caption):
 
 # ---------------------------------------------------------------- Table 3 and Figs. 5–13
 
+def _per_newton(coefficients) -> float:
+    """|δ(1 N) − δ(0)| in mm of a relation-1 polynomial in F (mm, N): the loaded node's displacement
+    per newton along the force, the largest of the surface (the displacement range, eq. 49 slope)."""
+    if not coefficients or len(coefficients) < 2:
+        return None
+    return abs(sum(coefficients[1:]))
+
+
 def _table3(ctx, fits, paper):
+    """002 Table 3 beside ours, absolute and relative to the displacement range: our plate and the
+    paper's differ in stiffness (eq. 49 slopes), so only the relative RMSE compares like for like."""
     pap = paper.get("table3_mm_per_N", {})
-    rows = []
+    pap_range = {d: _per_newton(paper.get("eq49", {}).get(d)) for d in AXES}
+    rows, relative = [], []
     for label, fit in fits:
         check = fit.get("check") or {}
         for d in AXES:
             if d not in check:
                 continue
             e = check[d]
-            rows.append([label, f"force along {d}", *_mm(e["errors"]["rmse"]), *_mm(e["rmse_per_newton"]),
-                         *(pap.get(d) or [None, None, None])])
+            ours_range = _per_newton(((fit.get("paper_units") or {}).get(d) or {}).get("force_to_loaded_mm_per_N_power"))
+            per_n = _mm(e["rmse_per_newton"])
+            ours_rel = [100 * v / ours_range if ours_range else None for v in per_n]
+            p = pap.get(d) or [None, None, None]
+            paper_rel = [100 * v / pap_range[d] if v is not None and pap_range[d] else None for v in p]
+            rows.append([label, f"force along {d}", *_mm(e["errors"]["rmse"]), *per_n, *p, ours_range,
+                         pap_range[d], *ours_rel, *paper_rel])
+            relative.append({"fit": label, "direction": d, "ours": ours_rel, "paper": paper_rel,
+                             "ours_range": ours_range, "paper_range": pap_range[d]})
     write_table(ctx, "fit_table3_rmse",
                 ["fit", "force", "RMSE x [mm]", "RMSE y [mm]", "RMSE z [mm]",
                  "RMSE/F x [mm/N]", "RMSE/F y [mm/N]", "RMSE/F z [mm/N]",
-                 "paper x [mm/N]", "paper y [mm/N]", "paper z [mm/N]"],
+                 "paper x [mm/N]", "paper y [mm/N]", "paper z [mm/N]",
+                 "range: δ/F ours [mm/N]", "range: δ/F paper [mm/N]",
+                 "RMSE/range x (ours, %)", "RMSE/range y (ours, %)", "RMSE/range z (ours, %)",
+                 "RMSE/range x (paper, %)", "RMSE/range y (paper, %)", "RMSE/range z (paper, %)"],
                 rows,
                 "Root mean square error of the fitted top-node displacements (121 nodes) for forces of "
                 "0.2, 0.4, 0.6, 0.8 and 1.0 N along each axis (002 §5.1.1), against the exact RPIM "
                 "solution (superposition of the unit-load solutions, which reproduces every RPIM load "
                 "case to round-off, see fit_composite_errors). RMSE/F averages the RMSE divided by the "
-                "force. Paper: 002 Table 3, labelled mm/N.")
-    return rows
+                "force. Paper: 002 Table 3, labelled mm/N. Our plate and the paper's differ in stiffness, so "
+                "the absolute RMSE does not compare like for like: 'range' is the loaded node's displacement "
+                "per newton along the force, the largest displacement of the surface (ours from relation 1, "
+                "fit_eq49; the paper's from 002 eq. 49), and RMSE/range divides each RMSE/F by its own plate's "
+                "range.")
+    return relative
+
+
+def _table3_sentence(relative, label) -> str:
+    """Table 3 like for like, in words: the relative RMSE of one fit and of the paper, and the
+    ratio of the two plates' ranges."""
+    rows = [r for r in relative if r["fit"] == label]
+    ours = [v for r in rows for v in r["ours"] if v is not None]
+    paper = [v for r in rows for v in r["paper"] if v is not None]
+    if not ours or not paper:
+        return ""
+    stiff = [r["paper_range"] / r["ours_range"] for r in rows if r["paper_range"] and r["ours_range"]]
+    lo, hi = min(ours), max(ours)
+    plo, phi = min(paper), max(paper)
+    verdict = ("below the paper's" if hi < plo else "above the paper's" if lo > phi else "overlapping the paper's")
+    return (f"- Table 3 like for like ({label}): RMSE relative to the displacement range {fmt(lo, 3)}–{fmt(hi, 3)} % "
+            f"against the paper's {fmt(plo, 3)}–{fmt(phi, 3)} % ({verdict}); the paper's plate moves "
+            f"{fmt(min(stiff), 3)}–{fmt(max(stiff), 3)} times as far per newton as ours, which the absolute "
+            "RMSE/F carries along (fit_table3_rmse).")
 
 
 def _deviation_plots(ctx, fit, paper, tag):
@@ -277,7 +321,9 @@ def _composite(ctx, fits):
 
 # ---------------------------------------------------------------- cross-validation
 
-def _cv(ctx, cv):
+def _cv(ctx, cv, fit):
+    """cv_scores and the cv_* plots; ★ and "used by the fit" mark the candidate the fitted
+    model (params "fit") uses, not the cv stage's own choice (rpim_cv)."""
     tables = cv["tables"]
     rows = []
     for t in tables:
@@ -285,18 +331,20 @@ def _cv(ctx, cv):
             rows.append([t["relation"], t["direction"], t["component"], t["model"], r["label"], r["parameters"],
                          r["status"], r["rmse"] * MM if r["rmse"] is not None else None,
                          r["se"] / (2.0 * r["rmse"]) * MM if r.get("se") is not None and r["rmse"] else None,
-                         r["max_condition"], r["chosen"], r["preferred"], r.get("message", "")])
+                         r["max_condition"], used_by_fit(t, r, fit), r["chosen"], r["preferred"],
+                         r.get("message", "")])
     write_table(ctx, "cv_scores",
                 ["relation", "force", "component", "model", "orders", "parameters", "status",
-                 "CV RMSE [mm]", "SE of RMSE [mm]", "max cond(AᵀA)", "chosen", "best in table", "refusal"],
+                 "CV RMSE [mm]", "SE of RMSE [mm]", "max cond(AᵀA)", "used by the fit", "cv choice",
+                 "best in table", "refusal"],
                 rows,
-                "k-fold cross-validation of every candidate order (folds and seed in the cv artifact's "
-                "settings). Relation 1: held-out load cases; relation 2: held-out nodes of every case; "
-                "relation 3: held-out load cases, scored by the surface change their predicted coefficients make "
-                 "against the case's own fitted surface. A refused candidate "
-                "(too few samples, ill-conditioned normal equations, no convergence) is flagged, never "
-                "scored. 'chosen': the order the fitted model uses (simplest within one standard error "
-                "of the best); 'best in table': the choice within this model family alone.")
+                "Cross-validation of every candidate order. " + settings_note(cv, fit) + " Relation 1: held-out "
+                "load cases; relation 2: held-out nodes of every case; relation 3: held-out load cases, scored by "
+                "the surface change their predicted coefficients make against the case's own fitted surface. A "
+                "refused candidate (too few samples, ill-conditioned normal equations, no convergence) is flagged, "
+                "never scored. 'used by the fit': the order the fitted model plays back; 'cv choice': what the cv "
+                "stage itself chooses (simplest within one standard error of the best, or the best, as its settings "
+                "say); 'best in table': the choice within this model family alone.")
 
     import matplotlib.pyplot as plt
     # relation 1
@@ -308,11 +356,12 @@ def _cv(ctx, cv):
         vals = [max(r["rmse"] * MM, 1e-16) for r in t["candidates"] if r["rmse"] is not None]
         ax.semilogy(orders, vals, marker="o", label=f"force along {t['direction']}")
         for r in t["candidates"]:
-            if r["chosen"]:
+            if used_by_fit(t, r, fit) and r["rmse"] is not None:
                 ax.semilogy([r["order"]], [max(r["rmse"] * MM, 1e-16)], marker="*", ms=14, color="k")
     ax.set_xlabel("polynomial order λ of relation 1")
     ax.set_ylabel("CV RMSE of the loaded-node displacement [mm]")
-    ax.set_title("relation 1 (002 eqs. 39–42); ★ chosen")
+    ax.set_title(f"relation 1 (002 eqs. 39–42), {describe_settings(cv.get('settings'))} CV; ★ used by the fit",
+                 fontsize=9)
     ax.legend(fontsize=8)
     save(fig, ctx.out("cv_force_order.png"))
 
@@ -342,7 +391,7 @@ def _cv(ctx, cv):
                         ax.semilogy([p for p, _ in pts], [v for _, v in pts], color="tab:orange", marker="o", ms=3,
                                     lw=1.0, label="bivariate")
                     for r in t["candidates"]:
-                        if r["chosen"]:
+                        if used_by_fit(t, r, fit) and r["rmse"] is not None:
                             ax.semilogy([r["parameters"]], [r["rmse"] * MM], marker="*", ms=13, color="k")
                         if r["preferred"]:
                             best[t["model"]] = r
@@ -366,7 +415,8 @@ def _cv(ctx, cv):
                      "bivariate degree", "bivariate CV RMSE [mm]", "parameters"],
                     compare,
                     "Surface model comparison by cross-validation (relation 2, 002 eq. 44): the order each "
-                    "family would choose on its own (simplest within one standard error of its best) and its "
+                    f"family would choose on its own (selection rule "
+                    f"'{(cv.get('settings') or {}).get('cv', {}).get('selection', 'not recorded')}') and its "
                     "CV RMSE over held-out nodes. Separable: the paper's model without cross terms; bivariate: "
                     "all terms x^i y^j with i + j ≤ n (beyond the paper).")
 
@@ -487,8 +537,19 @@ def _ansys(ctx, play, paper):
 
 # ---------------------------------------------------------------- nonlinear data
 
-def _nonlinear(ctx, cv, fit):
-    """Relations 1 and 3 cross-validated on static TLED solutions (a nonlinear body)."""
+def _orders_phrase(orders: dict) -> str:
+    """"1" when every direction has that order, else "x: 1, z: 2"."""
+    values = set(orders.values())
+    return str(values.pop()) if len(values) == 1 else ", ".join(f"{d}: {o}" for d, o in sorted(orders.items()))
+
+
+def _force_orders(fit) -> dict:
+    return {d: sel["force_order"] for d, sel in (fit or {}).get("selection", {}).items()}
+
+
+def _nonlinear(ctx, cv, fit, linear_fit=None):
+    """Relations 1 and 3 cross-validated on static TLED solutions (a nonlinear body); the orders
+    named are the ones the nonlinear fit uses, set beside those of the linear RPIM fit."""
     if not cv and not fit:
         return []
     rows = []
@@ -501,21 +562,27 @@ def _nonlinear(ctx, cv, fit):
             pts = [(r["order"], r["rmse"] * MM) for r in t["candidates"] if r["rmse"] is not None]
             ax.semilogy([p for p, _ in pts], [v for _, v in pts], marker="o", label=f"{name}, force {t['direction']}")
             for r in t["candidates"]:
+                used = used_by_fit(t, r, fit)
                 rows.append([name, t["direction"], r["order"], r["status"],
-                             r["rmse"] * MM if r["rmse"] is not None else None, r["chosen"]])
-                if r["chosen"]:
+                             r["rmse"] * MM if r["rmse"] is not None else None, used, r["chosen"]])
+                if used and r["rmse"] is not None:
                     ax.semilogy([r["order"]], [r["rmse"] * MM], marker="*", ms=14, color="k")
         ax.set_xlabel("polynomial order")
         ax.set_ylabel("CV RMSE [mm]")
-        ax.set_title("nonlinear data (TLED static solutions); ★ chosen")
+        ax.set_title("nonlinear data (TLED static solutions); ★ used by the fit")
         ax.legend(fontsize=7)
         save(fig, ctx.out("cv_nonlinear_orders.png"))
+        nl_orders, lin_orders = _force_orders(fit), _force_orders(linear_fit)
+        compare = ""
+        if nl_orders:
+            compare = f" The nonlinear fit's relation 1 has order {_orders_phrase(nl_orders)}"
+            compare += (f"; the linear RPIM plate's fit has order {_orders_phrase(lin_orders)}." if lin_orders else ".")
         write_table(ctx, "cv_nonlinear_orders",
-                    ["relation", "force", "order", "status", "CV RMSE [mm]", "chosen"], rows,
+                    ["relation", "force", "order", "status", "CV RMSE [mm]", "used by the fit", "cv choice"], rows,
                     "Cross-validation on static TLED (neo-Hookean) solutions of a cuboid under increasing "
                     "probe forces (experiment notes): relation 1 maps the force to the probe-node "
                     "displacement, relation 3 the probe-node displacement to the surface coefficients. "
-                    "On this nonlinear body orders above 1 win, where the linear RPIM plate gives 1.")
+                    + settings_note(cv, fit) + compare)
     if fit:
         fig, ax = figure()
         for d, sel in fit["selection"].items():
@@ -562,7 +629,7 @@ def report(ctx):
                                      "Surface coefficients with the paper's orders fixed, beside 002 Tables 1–2.")
     coeff += _coefficient_tables(ctx, headline, paper, "fit_coefficients_cv",
                                  "Surface coefficients with orders chosen by cross-validation.")
-    _table3(ctx, fits, paper)
+    relative = _table3(ctx, fits, paper)
     dev_rows = []
     for label, f in fits:
         tag = "" if f is headline else ("paper_orders_" if f is paper_fit else "bivariate_")
@@ -574,11 +641,12 @@ def report(ctx):
                 "Range of the mean deviation (fit − RPIM, mean over 0.2 … 1.0 N) over the 121 top nodes, "
                 "as plotted in fit_deviation_*force_*.png; paper: the ranges stated with 002 Figs. 5, 8, 11.")
     _composite(ctx, fits)
-    compare = _cv(ctx, cv) if cv else []
+    compare = _cv(ctx, cv, fit) if cv else []
     _chosen_orders(ctx, fits)
     _runtime(ctx, headline, paper)
     _ansys(ctx, play, paper)
-    nl = _nonlinear(ctx, _payload(ctx, "nonlinear_cv"), _payload(ctx, "nonlinear_fit"))
+    nl_fit = _payload(ctx, "nonlinear_fit")
+    nl = _nonlinear(ctx, _payload(ctx, "nonlinear_cv"), nl_fit, headline)
 
     # ---- summary
     lines = ["## Marquardt fits (paper 002, §3–5)\n"]
@@ -597,6 +665,9 @@ def report(ctx):
                 if sup and f is headline:
                     lines.append(f"- Exact linear baseline: superposition of the unit-load solutions matches "
                                  f"every RPIM case to {fmt(max(sup['max_abs']) * MM)} mm.")
+    like_for_like = _table3_sentence(relative, fits[0][0])
+    if like_for_like:
+        lines.append(like_for_like)
     t = headline.get("timing") or {}
     if t.get("playback_s_per_evaluation") is not None:
         lines.append(f"- Playback of all 121 top nodes: {fmt(t['playback_s_per_evaluation'] * 1e6)} µs per force "
@@ -607,10 +678,11 @@ def report(ctx):
         lines.append(f"- Surface models by CV: bivariate (cross terms) beats separable in {better} of "
                      f"{len(compare)} (force, component) pairs (cv_surface_models).")
     if nl:
-        chosen = [r for r in nl if r[5]]
-        lines.append("- Nonlinear (TLED static) data: orders chosen by CV: " +
-                     ", ".join(f"{r[0]} {r[2]}" for r in chosen) +
-                     " (the linear RPIM plate gives 1; cv_nonlinear_orders, fit_nonlinear_force_displacement.png).")
+        used = [r for r in nl if r[5]]
+        lines.append("- Nonlinear (TLED static) data: orders the fit uses, chosen by CV: " +
+                     ", ".join(f"{r[0]} {r[2]}" for r in used) +
+                     f" (the linear RPIM plate's relation 1: order {_orders_phrase(_force_orders(headline))}; "
+                     "cv_nonlinear_orders, fit_nonlinear_force_displacement.png).")
     lines.append("\nTables: [fit_eq49](fit_eq49.md), " +
                  ", ".join(f"[{c}]({c}.md)" for c in coeff) +
                  ", [fit_table3_rmse](fit_table3_rmse.md), [fit_deviation_ranges](fit_deviation_ranges.md), "

@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from conftest import run_pipeline
+from conftest import ROOT, run_pipeline
 
 from pipeline import experiment as experiment_mod
 
@@ -158,3 +158,80 @@ def test_cpu_description_names_the_model_and_the_widest_vector_extension(tmp_pat
         info.write_text(f"processor\t: 0\nmodel name\t: Some CPU\nflags\t\t: {flags}\n\nprocessor\t: 1\n")
         assert cpu_description(str(info)) == f"Some CPU ({expected})"
     assert cpu_description(str(tmp_path / "missing")) == "CPU unknown"
+
+
+# --------------------------------------------------------------------------- stages shared by reference
+def _ref_experiments(tmp_path):
+    (tmp_path / "a.json").write_text(json.dumps({
+        "shared": {"cells": [2, 1, 1]},
+        "stages": {
+            "cube": {"tool": "mesher", "config": {"source": {"kind": "cuboid", "cells": {"shared": "cells"},
+                                                            "size": [0.01, 0.01, 0.01]}}},
+            "other": {"tool": "mesher", "config": {"source": {"kind": "cuboid", "cells": [1, 1, 1],
+                                                             "size": [0.01, 0.01, 0.01]}}},
+            "table": {"report": "pipeline.reports.meshes", "inputs": ["cube"], "params": {"order": ["cube"]}}}}))
+    (tmp_path / "b.json").write_text(json.dumps({
+        "results": "mesh_b",
+        "stages": {
+            "cube": {"ref": "a.cube", "description": "a's cube"},
+            "table": {"report": "pipeline.reports.meshes", "inputs": ["cube"], "params": {"order": ["cube"]}}}}))
+
+
+def test_a_stage_ref_is_the_other_experiments_stage_verbatim(monkeypatch, tmp_path):
+    monkeypatch.setattr(experiment_mod, "EXPERIMENTS", tmp_path)
+    _ref_experiments(tmp_path)
+    a, b = experiment_mod.load("a"), experiment_mod.load("b")
+    # The shared fragment is expanded in a's stage, and b's run of it is the same run.
+    assert a.runs["cube"].config["source"]["cells"] == [2, 1, 1]
+    assert b.runs["cube"].config == a.runs["cube"].config
+    assert b.origins == {"cube": "a.cube"} and experiment_mod.origin(a, "cube") == "a.cube"
+    assert [(e.name, s) for e, s in experiment_mod.sharing(a, "cube")] == [("b", "cube")]
+    assert experiment_mod.sharing(a, "other") == []
+    # --stage refreshes the reports built on the stage, not the stages beside it.
+    assert experiment_mod.refresh(a, "cube") == ["cube", "table"]
+    assert experiment_mod.refresh(a, "other") == ["other"]
+
+
+@pytest.mark.parametrize("stage, expected", [
+    ({"ref": "nope.cube"}, "/stages/x/ref: expected an experiment of experiments/, got 'nope'"),
+    ({"ref": "a.missing"}, "/stages/x/ref: expected a stage of a.json, got 'missing'"),
+    ({"ref": "a.table"}, "/stages/x/ref: expected a tool or python stage, a.table is not one"),
+    ({"ref": "a"}, "/stages/x/ref: expected \"experiment.stage\", got 'a'"),
+    ({"ref": "a.cube", "config": {}}, "/stages/x/config: unknown field for a stage declared by \"ref\""),
+    ({"ref": "c.x"}, "expected no cycle of stage refs"),
+    ({"tool": "mesher", "config": {"cells": {"shared": "nope"}}}, "/stages/x/config/cells/shared: expected the name"),
+])
+def test_bad_stage_refs_are_refused(monkeypatch, tmp_path, stage, expected):
+    from pipeline.errors import ExperimentError
+    monkeypatch.setattr(experiment_mod, "EXPERIMENTS", tmp_path)
+    _ref_experiments(tmp_path)
+    (tmp_path / "c.json").write_text(json.dumps({"stages": {"x": stage}}))
+    with pytest.raises(ExperimentError) as e:
+        experiment_mod.load("c")
+    assert expected in str(e.value)
+
+
+def test_stage_rerun_refreshes_its_reports_here_and_where_it_is_shared(pipeline_env):
+    """A stage whose artifact changed under the same key (as a rerun of a tool with changed
+    behaviour does): `--stage` reruns it and the reports built on it, in this experiment and in
+    the experiments that include it by ref; REPORT.md says which command wrote it."""
+    from pathlib import Path
+    env_dir = Path(pipeline_env["PIPELINE_EXPERIMENTS"])
+    _ref_experiments(env_dir)
+    assert run_pipeline(pipeline_env, "run", "a").returncode == 0
+    assert run_pipeline(pipeline_env, "run", "b").returncode == 0
+    manifest = json.loads((Path(pipeline_env["PIPELINE_RESULTS"]) / "manifest.json").read_text())
+    artifact = next(e["artifact"] for e in manifest["experiments"]["a"] if e["run"] == "cube")
+    path = Path(artifact) if Path(artifact).is_absolute() else ROOT / artifact
+    doc = json.loads(path.read_text())
+    doc["payload"]["nodes"][0][0] += 1e-3       # the tables were built on this, stale, artifact
+    path.write_text(json.dumps(doc))
+    for name in ("a", "b"):
+        assert "ran table" in run_pipeline(pipeline_env, "run", name).stdout
+    r = run_pipeline(pipeline_env, "run", "a", "--stage", "cube")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "[a 1/2] ran cube" in r.stdout and "[a 2/2] ran table" in r.stdout
+    assert "[b 2/2] ran table" in r.stdout and "[b 1/2] cached cube" in r.stdout
+    assert "other" not in r.stdout   # a stage beside the rerun one is not selected
+    report = (Path(pipeline_env["PIPELINE_RESULTS"]) / "REPORT.md").read_text()
+    assert "Last updated by `pipeline run a --stage cube`" in report and "make reproduce" not in report
