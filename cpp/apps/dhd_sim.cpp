@@ -8,6 +8,7 @@
 
 #include "common/app.hpp"
 #include "common/progress_line.hpp"
+#include "softsim/hybrid/cut_bench.hpp"
 #include "softsim/hybrid/dhd_vtu.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 
@@ -41,14 +42,16 @@ int main(int argc, char** argv) {
   app::AppInfo info;
   info.name = "dhd_sim";
   info.summary = "dual-mode hybrid FEM (" + kinds_in_words() + " elements), explicit or static (paper 000)";
-  info.flags = {"--bench"};
+  info.flags = {"--bench", "--cut-bench"};
   info.config_help =
       "  {\"mesh\": tet_mesh artifact, \"material\": {\"model\", \"E\", \"nu\", \"density\"}, \"damping\": {\"alpha\"},\n"
       "   \"partition\": {\"kind\": uniform|layers|linear_fraction|tags|sphere|strain, ...},\n"
       "   \"boundary\": {\"fixed\", \"prescribed\", \"forces\", \"gravity\", \"probe\"},\n"
       "   \"solver\": {\"kind\": explicit|static, \"steps\", \"dt\" | \"safety_factor\", \"force_dt\", \"increments\", ...},\n"
       "   \"output\": {\"vtu\", \"vtu_interval\", \"vtu_format\", \"trajectories\", \"trajectory_interval\", \"velocity\"},\n"
-      "   \"threads\": 1, \"bench\": {\"steps\", \"threads\", \"linear_fraction\"}}\n"
+      "   \"cuts\": [{\"time\", \"from\", \"to\", \"mode\"}],\n"
+      "   \"threads\": 1, \"bench\": {\"steps\", \"threads\", \"linear_fraction\", \"repeats\", \"response_set\"}}\n"
+      "  --cut-bench: what the config's first cut costs the explicit engine and a precomputing method\n"
       "  Element kinds (partition \"element\", \"linear_element\", \"nonlinear_element\"; the artifact's element_kind\n"
       "  codes): " +
       fem::kind_legend_text() +
@@ -61,6 +64,11 @@ int main(int argc, char** argv) {
     const hybrid::DhdConfig config = hybrid::read_dhd_config(cfg, mesh);
     if (!config.strain_reference.empty()) ctx.input(config.strain_reference);
 
+    if (ctx.flag("--cut-bench")) {
+      ctx.write(hybrid::kCutBenchSchema, hybrid::kCutBenchSchemaVersion,
+                hybrid::cut_bench(mesh, config, config.bench.repeats, config.bench.response_nodes));
+      return;
+    }
     if (ctx.flag("--bench")) {
       const auto runs = hybrid::run_bench(mesh, config);
       print_bench(runs);

@@ -329,11 +329,19 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   o->reject_unknown();
 }
 
-void read_bench(const io::JsonReader& cfg, DhdConfig& c) {
+void read_bench(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
   auto b = cfg.optional("bench");
   if (!b) return;
   c.bench.steps = b->get_int32("steps", c.bench.steps);
   b->require(c.bench.steps >= 1, "steps", "a positive step count");
+  c.bench.repeats = b->get_int32("repeats", c.bench.repeats);
+  b->require(c.bench.repeats >= 1 && c.bench.repeats <= 1000, "repeats", "between 1 and 1000 repetitions");
+  if (b->has("response_set")) {
+    const std::string set = b->get_string("response_set");
+    const auto it = mesh.node_sets.find(set);
+    if (it == mesh.node_sets.end() || it->second.empty()) b->fail_member("response_set", "a non-empty node set of the mesh");
+    c.bench.response_nodes = it->second;
+  }
   if (b->has("threads")) {
     c.bench.threads.clear();
     for (auto t : b->get_ints("threads")) {
@@ -370,7 +378,7 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   read_output(cfg, mesh, c);
   c.threads = cfg.get_int32("threads", 1);
   cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");
-  read_bench(cfg, c);
+  read_bench(cfg, mesh, c);
   c.cuts = read_cuts(cfg, mesh);
   if (!c.cuts.empty() && c.static_solver) cfg.fail_member("cuts", "an explicit solver (a cut is an event in time)");
   cfg.reject_unknown();

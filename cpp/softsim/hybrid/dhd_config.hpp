@@ -42,6 +42,10 @@ struct BenchConfig {
   int steps = 500;
   std::vector<int> threads = {1, 2};
   std::vector<double> linear_fractions = {0.5};  // mixed partitions measured besides the uniform ones
+  // --cut-bench (hybrid/cut_bench.hpp): repetitions (best taken) and the nodes of the
+  // precomputed-response model (a node set of the mesh).
+  int repeats = 5;
+  std::vector<int> response_nodes;
 };
 
 struct DhdConfig {

@@ -34,9 +34,11 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, const dynamics::Sn
 }
 
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::ElementKind> kinds,
-               const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress) {
+               const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress,
+               const std::function<void(const DhdScene&)>& on_scene) {
   // The scene borrows the caller's mesh for the run (no copy).
   DhdScene scene(std::shared_ptr<const mesh::TetMesh>(&mesh, [](const mesh::TetMesh*) {}), c, std::move(kinds));
+  if (on_scene) on_scene(scene);
   DhdRun run;
   run.critical = scene.critical_step();
   run.setup_seconds = scene.setup_seconds();

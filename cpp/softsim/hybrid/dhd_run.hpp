@@ -1,6 +1,7 @@
 #pragma once
 // One dhd_sim run from a config: partition, time step, explicit or static solve, and the
 // "dhd_result" payload; and the --bench measurement of four partitions.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,8 +37,10 @@ struct DhdRun {
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, const dynamics::SnapshotFn& snapshot = {});
 // The same with the partition already made: `kinds` as make_partition(mesh, config.partition).
 // `progress` is called between chunks of explicit steps (see dynamics::ProgressFn).
+// `on_scene` is called once the scene is set up (output that must follow its cuts keeps it).
 DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& config, std::vector<fem::ElementKind> kinds,
-               const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress = {});
+               const dynamics::SnapshotFn& snapshot, const dynamics::ProgressFn& progress = {},
+               const std::function<void(const DhdScene&)>& on_scene = {});
 
 // The artifact's "element_kind_legend": fem::kElementKinds in code order, one object per kind
 // {"name", "small_strain", "description"} (element_kind value k is entry k).

@@ -82,6 +82,7 @@ class DhdScene {
   // (ExplicitSolver::remove_elements). The config's "cuts" call it at their times.
   const CutEvent& cut(const cutting::BladeSweep& sweep);
   const std::vector<CutEvent>& cut_events() const { return cut_events_; }
+  bool removed(int element) const { return elements_ && elements_->removed(element); }
 
   // ---- static equilibrium of the same model (000 eq. 24) ----
   dynamics::StaticResult solve_static() const;

@@ -1,5 +1,6 @@
 #include "softsim/hybrid/result_vtu.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -26,7 +27,8 @@ ResultVtu::ResultVtu(const mesh::TetMesh& mesh, const std::vector<fem::ElementKi
   fields_.cell_scalars["von_mises_stress"].resize(m);
 }
 
-void ResultVtu::write(const std::string& path, const std::vector<double>& u, const std::vector<double>& v) {
+void ResultVtu::write(const std::string& path, const std::vector<double>& u, const std::vector<double>& v,
+                      const std::function<bool(int)>& removed) {
   auto& du = fields_.point_vectors["displacement"];
   auto& dv = fields_.point_vectors["velocity"];
   for (std::size_t i = 0; i < du.size(); ++i) {
@@ -42,6 +44,16 @@ void ResultVtu::write(const std::string& path, const std::vector<double>& u, con
     stress[e] = io::symmetric_components(stress_.stress()[e]);
     von_mises[e] = stress_.von_mises()[e];
   }
+  if (removed) {
+    auto& flag = fields_.cell_ints["removed"];
+    flag.assign(strain.size(), 0);
+    for (std::size_t e = 0; e < strain.size(); ++e)
+      if (removed(static_cast<int>(e))) {
+        flag[e] = 1;
+        strain[e] = stress[e] = io::symmetric_components(Eigen::Matrix3d::Zero());
+        von_mises[e] = 0.0;
+      }
+  }
   io::write_vtu(path, mesh_, fields_, format_);
 }
 
@@ -54,7 +66,7 @@ std::string snapshot_path(const std::string& vtu, int step) {
 std::string series_path(const std::string& vtu) { return stem_of(vtu) + ".pvd"; }
 
 VtuOutput::VtuOutput(const mesh::TetMesh& mesh, const std::vector<fem::ElementKind>& kinds, const DhdConfig& config)
-    : output_(config.output) {
+    : output_(config.output), has_cuts_(!config.cuts.empty()) {
   if (!output_.vtu.empty()) writer_.emplace(mesh, kinds, config.material, output_.vtu_format);
 }
 
@@ -67,7 +79,7 @@ dynamics::SnapshotFn VtuOutput::snapshot() {
 
 void VtuOutput::write_snapshot(int step, double time, const std::vector<double>& u, const std::vector<double>& v) {
   const std::string path = snapshot_path(output_.vtu, step);
-  writer_->write(path, u, v);
+  writer_->write(path, u, v, removed());
   // The .pvd sits beside the snapshots and names them relative to itself.
   series_.push_back({time, std::filesystem::path(path).filename().string()});
   io::write_pvd(series_path(output_.vtu), series_);
@@ -78,7 +90,17 @@ void VtuOutput::write_final(const DhdRun& run) {
   const std::vector<double>& u =
       run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement;
   static const std::vector<double> kNoVelocity;
-  writer_->write(output_.vtu, u, run.explicit_result ? run.explicit_result->velocity : kNoVelocity);
+  const std::vector<int>& gone = run.removed_elements;
+  const std::function<bool(int)> removed =
+      has_cuts_ ? std::function<bool(int)>([&gone](int e) { return std::binary_search(gone.begin(), gone.end(), e); })
+                : std::function<bool(int)>();
+  writer_->write(output_.vtu, u, run.explicit_result ? run.explicit_result->velocity : kNoVelocity, removed);
+}
+
+std::function<bool(int)> VtuOutput::removed() const {
+  if (!has_cuts_ || !scene_) return {};
+  const DhdScene* scene = scene_;
+  return [scene](int e) { return scene->removed(e); };
 }
 
 }  // namespace softsim::hybrid

@@ -7,7 +7,10 @@
 // Cell data: element_kind (the codes of fem::kElementKinds), region (the mesh's tag, or
 // 0), green_lagrange_strain (E = ½(FᵀF − I), dimensionless), cauchy_stress (Pa, each element's
 // own law, fem/element_stress.hpp), both symmetric tensors of 6 components (xx yy zz xy yz xz),
-// and von_mises_stress (Pa). Positions are the reference nodes.
+// and von_mises_stress (Pa). Positions are the reference nodes. With cuts: cell data `removed`
+// (1: a cut removed the element by then; its strain and stress are written as zero), so
+// ParaView's Threshold (removed = 0) shows the cut open.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,8 +29,10 @@ class ResultVtu {
  public:
   ResultVtu(const mesh::TetMesh& mesh, const std::vector<fem::ElementKind>& kinds, const fem::Material& material,
             io::VtuFormat format);
-  // u, v: 3 values per node; v may be empty (written as zero). Atomic.
-  void write(const std::string& path, const std::vector<double>& u, const std::vector<double>& v);
+  // u, v: 3 values per node; v may be empty (written as zero). Atomic. `removed(e)`: element e
+  // is cut away (empty: none is).
+  void write(const std::string& path, const std::vector<double>& u, const std::vector<double>& v,
+             const std::function<bool(int)>& removed = {});
 
  private:
   const mesh::TetMesh& mesh_;
@@ -50,11 +55,18 @@ class VtuOutput {
   // For run_dhd: empty unless snapshots are asked for. Refers to this object.
   dynamics::SnapshotFn snapshot();
   void write_final(const DhdRun& run);
+  // The scene whose cuts the files show (null: none; the scene must outlive the writes).
+  void follow_cuts(const DhdScene& scene) { scene_ = &scene; }
+  void follow_cuts(std::nullptr_t) { scene_ = nullptr; }
 
  private:
   void write_snapshot(int step, double time, const std::vector<double>& u, const std::vector<double>& v);
 
+  std::function<bool(int)> removed() const;
+
   OutputConfig output_;
+  bool has_cuts_ = false;
+  const DhdScene* scene_ = nullptr;
   std::optional<ResultVtu> writer_;
   std::vector<io::PvdEntry> series_;
 };

@@ -1,0 +1,137 @@
+#include "softsim/hybrid/cut_bench.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include <Eigen/SparseCholesky>
+
+#include "softsim/cutting/blade.hpp"
+#include "softsim/dynamics/scene.hpp"
+#include "softsim/fem/assembly.hpp"
+#include "softsim/hybrid/dhd_scene.hpp"
+#include "softsim/hybrid/partition.hpp"
+#include "softsim/io/errors.hpp"
+
+namespace softsim::hybrid {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Best wall time of `repeats` calls of `work`.
+template <class Work>
+double best_of(int repeats, Work&& work) {
+  double best = 1e300;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    work();
+    best = std::min(best, seconds_since(t0));
+  }
+  return best;
+}
+
+mesh::TetMesh without(const mesh::TetMesh& m, const std::vector<int>& removed, const std::vector<fem::ElementKind>& kinds,
+                      std::vector<fem::ElementKind>& kinds_left) {
+  mesh::TetMesh out;
+  out.nodes = m.nodes;
+  out.node_sets = m.node_sets;
+  kinds_left.clear();
+  for (int e = 0; e < m.num_tets(); ++e)
+    if (!std::binary_search(removed.begin(), removed.end(), e)) {
+      out.tets.push_back(m.tets[e]);
+      kinds_left.push_back(kinds[e]);
+    }
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json cut_bench(const mesh::TetMesh& mesh, const DhdConfig& c, int repeats,
+                         const std::vector<int>& response_nodes) {
+  if (c.static_solver) throw InputError("cut_bench: needs the explicit solver");
+  if (c.cuts.empty()) throw InputError("cut_bench: the config has no cut (cuts)");
+  const auto shared = std::shared_ptr<const mesh::TetMesh>(&mesh, [](const mesh::TetMesh*) {});
+  const std::vector<fem::ElementKind> kinds = make_partition(mesh, c.partition);
+  DhdConfig no_cuts = c;
+  no_cuts.cuts.clear();
+  const cutting::BladeSweep sweep = c.cuts.front().sweep;
+
+  // The explicit engine.
+  const double setup = best_of(repeats, [&] { DhdScene s(shared, no_cuts, kinds); });
+  DhdScene stepping(shared, no_cuts, kinds);
+  stepping.step(1);
+  constexpr int kSteps = 200;
+  const double step = best_of(repeats, [&] { stepping.step(kSteps); }) / kSteps;
+  double search = 1e300, update = 1e300;
+  std::vector<int> removed;
+  for (int r = 0; r < repeats; ++r) {
+    DhdScene s(shared, no_cuts, kinds);
+    const auto& ev = s.cut(sweep);
+    search = std::min(search, ev.search_seconds);
+    update = std::min(update, ev.report.seconds);
+    removed = ev.report.elements;
+  }
+  std::sort(removed.begin(), removed.end());
+  std::vector<fem::ElementKind> kinds_left;
+  const mesh::TetMesh cut_mesh = without(mesh, removed, kinds, kinds_left);
+  const auto cut_shared = std::shared_ptr<const mesh::TetMesh>(&cut_mesh, [](const mesh::TetMesh*) {});
+  const double full_setup = best_of(repeats, [&] { DhdScene s(cut_shared, no_cuts, kinds_left); });
+
+  // The precomputing methods: the linear stiffness of the cut mesh, constrained dofs out.
+  const std::vector<char> held = dynamics::constrained_mask(dynamics::resolve_constraints(c.scene, mesh.num_nodes()),
+                                                            mesh.num_nodes());
+  std::vector<int> index(3 * mesh.num_nodes(), -1);
+  int free = 0;
+  for (int q = 0; q < 3 * mesh.num_nodes(); ++q)
+    if (!held[q]) index[q] = free++;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
+  Eigen::SparseMatrix<double> K_free;
+  const double factorise = best_of(repeats, [&] {
+    const fem::Assembler linear(cut_mesh, std::vector<fem::ElementKind>(cut_mesh.num_tets(), fem::ElementKind::linear),
+                                c.material);
+    Eigen::SparseMatrix<double> K = linear.pattern();
+    const std::vector<double> zero(3 * mesh.num_nodes(), 0.0);
+    linear.tangent(zero.data(), K);
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(K.nonZeros());
+    for (int col = 0; col < K.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(K, col); it; ++it)
+        if (index[it.row()] >= 0 && index[it.col()] >= 0) t.emplace_back(index[it.row()], index[it.col()], it.value());
+    K_free.resize(free, free);
+    K_free.setFromTriplets(t.begin(), t.end());
+    llt.compute(K_free);
+  });
+  if (llt.info() != Eigen::Success) throw NumericalError("cut_bench: the cut mesh's linear stiffness is singular");
+  std::vector<int> response_dofs;
+  for (int node : response_nodes)
+    for (int k = 0; k < 3; ++k)
+      if (index[3 * node + k] >= 0) response_dofs.push_back(index[3 * node + k]);
+  const double response = best_of(repeats, [&] {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(free);
+    for (int q : response_dofs) {
+      rhs[q] = 1.0;
+      const Eigen::VectorXd col = llt.solve(rhs);
+      rhs[q] = 0.0;
+      if (!col.allFinite()) throw NumericalError("cut_bench: a response solve is not finite");
+    }
+  });
+
+  return {{"mesh", {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}}},
+          {"elements_removed", removed.size()},
+          {"repeats", repeats},
+          {"explicit", {{"setup_seconds", setup},
+                        {"step_seconds", step},
+                        {"cut_search_seconds", search},
+                        {"cut_update_seconds", update},
+                        {"full_setup_on_cut_mesh_seconds", full_setup}}},
+          {"precomputed", {{"free_dofs", free},
+                           {"cholesky_seconds", factorise},
+                           {"response_dofs", response_dofs.size()},
+                           {"response_seconds", response},
+                           {"refactor_and_response_seconds", factorise + response}}}};
+}
+
+}  // namespace softsim::hybrid
