@@ -51,6 +51,8 @@ def run_benchmarks(filter_regex: str = "") -> int:
     summary = ["## Benchmarks\n", "Raw Google Benchmark tables: [bench/README.md](bench/README.md). "
                f"Machine: {machine}.\n"]
     summary += kernel_ratios(out_dir / "bench_dhd.json")
+    from pipeline.bench_held import held_nodes_lines  # (it imports this module)
+    summary += held_nodes_lines(out_dir / "bench_dhd.json")
     (out_dir / "summary.md").write_text("\n".join(summary))
     return status
 

@@ -23,28 +23,29 @@ void fit_or_cv(app::AppContext& ctx) {
   const io::JsonReader& cfg = ctx.config();
   const bool cv_mode = ctx.mode == "cv";
   const fit::FitSettings settings = fit::fit_settings_from_json(cfg);
-  // A dataset is an rpim_dataset path or a series of static solutions (static_series.hpp).
+  // A dataset is an rpim_dataset path, a member of an rpim_dataset_set or a series of static
+  // solutions (static_series.hpp).
   const io::JsonReader ds_node = cfg.at("datasets");
-  std::array<std::string, 3> paths;
+  std::array<fit::DatasetRef, 3> paths;
   std::array<std::optional<fit::StaticSeries>, 3> series;
   for (int d = 0; d < 3; ++d) {
     const auto entry = ds_node.optional(fit::kAxis[d]);
     if (!entry) continue;
-    if (entry->raw().is_object()) {
+    if (entry->raw().is_object() && !fit::is_dataset_member_ref(*entry)) {
       series[d] = fit::static_series_from_json(*entry);
-      paths[d] = series[d]->mesh;
+      paths[d].path = series[d]->mesh;
     } else {
-      paths[d] = entry->as_string();
+      paths[d] = fit::dataset_ref_from_json(*entry);
     }
   }
   ds_node.reject_unknown();
-  std::vector<std::string> validation;
+  std::vector<fit::DatasetRef> validation;
   std::vector<double> check_forces = {0.2, 0.4, 0.6, 0.8, 1.0};  // 002 §5.1.1
   int examples = 3;
   long evaluations = 100000;
   if (!cv_mode) {
     if (const auto v = cfg.optional("validation"))
-      for (std::size_t i = 0; i < v->size(); ++i) validation.push_back((*v)[i].as_string());
+      for (std::size_t i = 0; i < v->size(); ++i) validation.push_back(fit::dataset_ref_from_json((*v)[i]));
     if (cfg.has("check_forces")) check_forces = cfg.get_doubles("check_forces");
     const std::int64_t ex = cfg.get_int("examples", examples);
     cfg.require(ex >= 0 && ex <= 1000, "examples", "0 to 1000 stored example cases");
@@ -61,16 +62,18 @@ void fit_or_cv(app::AppContext& ctx) {
   std::array<const fit::Dataset*, 3> use = {nullptr, nullptr, nullptr};
   nlohmann::json sources = nlohmann::json::object(), dataset_timing = nlohmann::json::object();
   for (int d = 0; d < 3; ++d) {
-    if (paths[d].empty()) continue;
+    if (paths[d].path.empty()) continue;
     if (series[d]) {
       ctx.input(series[d]->mesh);
       for (const auto& c : series[d]->cases) ctx.input(c.result);
       data[d] = fit::read_static_series(*series[d]);
     } else {
-      data[d] = fit::read_dataset(ctx.input(paths[d]));
+      ctx.input(paths[d].path);
+      data[d] = fit::read_dataset(paths[d]);
     }
     use[d] = &data[d];
-    sources[fit::kAxis[d]] = {{"path", paths[d]}, {"kind", data[d].kind}, {"cases", data[d].case_count()}};
+    sources[fit::kAxis[d]] = {{"path", paths[d].path}, {"kind", data[d].kind}, {"cases", data[d].case_count()}};
+    if (!paths[d].member.empty()) sources[fit::kAxis[d]]["member"] = paths[d].member;
     dataset_timing[fit::kAxis[d]] = data[d].timing;
   }
   ctx.provenance.seed = settings.options.seed;
@@ -95,8 +98,9 @@ void fit_or_cv(app::AppContext& ctx) {
     if (!exact && data[d].unit_solutions) exact.emplace(*data[d].unit_solutions);
   }
   nlohmann::json validated = nlohmann::json::array();
-  for (const auto& path : validation) {
-    const fit::Dataset v = fit::read_dataset(ctx.input(path));
+  for (const auto& ref : validation) {
+    ctx.input(ref.path);
+    const fit::Dataset v = fit::read_dataset(ref);
     fit::require_same_nodes(v, result.model);
     validated.push_back(fit::assess_dataset(result.model, v, examples));
     if (!exact && v.unit_solutions) exact.emplace(*v.unit_solutions);
@@ -116,7 +120,7 @@ void fit_or_cv(app::AppContext& ctx) {
 void play(app::AppContext& ctx) {
   const fit::PlaybackConfig config = fit::read_playback_config(ctx.config());
   ctx.input(config.fit_path);
-  if (!config.reference_path.empty()) ctx.input(config.reference_path);
+  if (!config.reference.path.empty()) ctx.input(config.reference.path);
   ctx.write(fit::kPlaybackSchema, fit::kPlaybackSchemaVersion, fit::play_back(config));
   std::cerr << "marquardt_fit play: " << config.forces.size() << " forces\n";
 }

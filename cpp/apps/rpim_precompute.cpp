@@ -1,5 +1,5 @@
 // rpim_precompute: the RPIM meshless model of 002 §2 on the plate of 002 §4.1.
-//   dataset      (default) solve a force set at node 61, write "rpim_dataset"
+//   dataset      (default) solve a force set at node 61, write "rpim_dataset" ("rpim_dataset_set": several, one build)
 //   stability    vary q, alpha_c, d_c or the support around the base setting, write "rpim_stability"
 //   convergence  refine a block with a manufactured solution, write "rpim_convergence"
 #include <iostream>
@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
       "            \"support\": {\"kind\": \"radius\"|\"nearest\", ...}, \"max_moment_condition\",\n"
       "            \"max_partition_error\"},\n"
       "   \"penalty\": {\"kind\", \"lambda\"}, \"solver\": \"sparse_ldlt\"|\"dense_llt\",\n"
-      "   dataset:     \"dataset\": {\"kind\": \"axis_x|axis_y|axis_z|random|check\", ...}, \"output\", \"indentation\"\n"
+      "   dataset:     \"dataset\": {\"kind\": \"axis_x|axis_y|axis_z|random|check\", ...}\n"
+      "                or \"datasets\": {name: {\"kind\", ...}, ...} (one build), \"output\", \"indentation\"\n"
       "   stability:   \"stability\": {\"q\": [...], \"alpha_c\": [...], \"d_c_spacing_factor\": [...], ...}\n"
       "   convergence: \"block\": {...}, \"nodes_per_edge\": [...]}\n"
       "  Full reference: cpp/apps/rpim_precompute.md";

@@ -96,9 +96,8 @@ std::vector<double> deformed_state() {
   return u;
 }
 
-void BM_Steps(benchmark::State& state) {
-  const int code = static_cast<int>(state.range(0));
-  const int threads = static_cast<int>(state.range(1));
+// Explicit steps of one partition: steps/s, ns per element of each kind and per node.
+void run_steps(benchmark::State& state, int code, int threads, bool skip_held_nodes) {
   const auto& m = paper_mesh();
   fem::ElementSet elements = element_set(code);
   dynamics::ExplicitOptions opt;
@@ -106,6 +105,7 @@ void BM_Steps(benchmark::State& state) {
   opt.steps = kStepsPerIteration;
   opt.threads = threads;
   opt.energy_interval = kStepsPerIteration;
+  opt.skip_held_nodes = skip_held_nodes;
   const dynamics::Scene scene = hybrid::default_bench_scene(m, 1000 * opt.dt);
   dynamics::ExplicitSolver solver(elements, dynamics::lumped_mass(m, kPaper.density), scene, opt);
   dynamics::ExplicitTiming last;
@@ -123,12 +123,24 @@ void BM_Steps(benchmark::State& state) {
   state.counters["ns_per_node"] = last.ns_per_node(m.num_nodes(), kStepsPerIteration);
 }
 
+void BM_Steps(benchmark::State& state) {
+  run_steps(state, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), true);
+}
+
 void steps_args(benchmark::internal::Benchmark* b) {
   for (int threads : {1, 2})
     for (int code : {0, 1, 2, 3, 5, 15}) b->Args({code, threads});
   for (int code : {11, 12, 13, 14}) b->Args({code, 1});  // Table 1's shares of linear elements
 }
 BENCHMARK(BM_Steps)->Apply(steps_args)->ArgNames({"partition", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The same steps with the held (fixed) nodes updated like the others (skip 0) and left out of
+// the node update (skip 1, the engine's default): the bench scene fixes the bottom layer.
+void BM_HeldNodes(benchmark::State& state) {
+  run_steps(state, static_cast<int>(state.range(0)), 1, state.range(1) != 0);
+}
+BENCHMARK(BM_HeldNodes)->ArgNames({"partition", "skip"})->Args({2, 0})->Args({2, 1})->Args({0, 0})->Args({0, 1})
+    ->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // One element phase over all elements of one kind, on a deformed state.
 void BM_Kernel(benchmark::State& state) {

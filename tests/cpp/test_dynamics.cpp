@@ -623,3 +623,93 @@ TEST(Stepping, BadDrivingInputIsRefused) {
   EXPECT_THROW(solver.set_probe_tip(Eigen::Vector3d::Zero()), InputError);
   EXPECT_THROW(solver.advance(-1), InputError);
 }
+
+// ---- held nodes: fixed in all three components, left out of the node update ----
+
+namespace {
+
+// SteppingScene plus a face held at a constant non-zero value, a face held in x only (not held:
+// its other components are integrated), a load on held nodes and trajectories of held and free
+// nodes; `skip` chooses whether held nodes are left out of the update.
+dynamics::ExplicitOptions held_scene(SteppingScene& s, bool skip) {
+  dynamics::DisplacementConstraint side = constraint(s.mesh, "x_min", Eigen::Vector3d(0.0005, -0.0002, 0.0003));
+  dynamics::DisplacementConstraint slide = constraint(s.mesh, "y_min", Eigen::Vector3d::Zero());
+  slide.components = {true, false, false};
+  s.scene.constraints.push_back(side);
+  s.scene.constraints.push_back(slide);
+  dynamics::NodalLoad on_held;
+  on_held.name = "on the bottom";
+  on_held.nodes = s.mesh.node_sets.at("bottom");
+  on_held.force_per_node = Eigen::Vector3d(0.01, 0.0, -0.02);
+  s.scene.loads.push_back(on_held);
+  dynamics::ExplicitOptions opt = s.options;
+  opt.trajectory_nodes = {s.mesh.node_sets.at("bottom").front(), s.mesh.node_sets.at("x_min").back(),
+                          s.mesh.node_sets.at("y_min").back(), s.scene.probe.node};
+  opt.trajectory_interval = 10;
+  opt.skip_held_nodes = skip;
+  return opt;
+}
+
+}  // namespace
+
+// Leaving the held nodes out of the update changes nothing: every free component, energy,
+// trajectory, reaction and probe force equals the full update bit for bit, and the held nodes
+// keep their prescribed values exactly.
+TEST(HeldNodes, SkippingThemEqualsTheFullUpdateAndTheyHoldTheirValues) {
+  for (int threads : {1, 2}) {
+    SteppingScene a_scene, b_scene;
+    dynamics::ExplicitOptions opt_full = held_scene(a_scene, false), opt_skip = held_scene(b_scene, true);
+    opt_full.threads = opt_skip.threads = threads;
+    fem::ElementSet set_a(a_scene.mesh, a_scene.kinds, a_scene.material),
+        set_b(b_scene.mesh, b_scene.kinds, b_scene.material);
+    const auto masses = dynamics::lumped_mass(a_scene.mesh, a_scene.material.elastic.density);
+    dynamics::ExplicitSolver full(set_a, masses, a_scene.scene, opt_full);
+    dynamics::ExplicitSolver skip(set_b, masses, b_scene.scene, opt_skip);
+    const dynamics::ExplicitResult r_full = full.run(), r_skip = skip.run();
+    expect_same_state(full, skip);
+    EXPECT_EQ(0, std::memcmp(r_full.displacement.data(), r_skip.displacement.data(),
+                             r_full.displacement.size() * sizeof(double)));
+    EXPECT_EQ(r_full.velocity, r_skip.velocity);
+    EXPECT_EQ(r_full.trajectories, r_skip.trajectories);
+    EXPECT_EQ(r_full.reactions, r_skip.reactions);
+    EXPECT_EQ(r_full.probe_force, r_skip.probe_force);
+    EXPECT_GT(max_abs(r_skip.displacement), 1e-3);
+    // The held nodes: zero on the bottom, the constant value on x_min (where the faces meet, the
+    // later constraint wins per component); the y_min face moves in y and z.
+    const dynamics::DisplacementConstraint& side = b_scene.scene.constraints[2];
+    for (int i : b_scene.mesh.node_sets.at("x_min"))
+      for (int k = 0; k < 3; ++k)
+        if (!(k == 0 && std::count(b_scene.mesh.node_sets.at("y_min").begin(), b_scene.mesh.node_sets.at("y_min").end(), i)))
+          EXPECT_EQ(r_skip.displacement[3 * i + k], side.displacement[k]) << "node " << i;
+    const auto& bottom = b_scene.mesh.node_sets.at("bottom");
+    const auto& xmin = b_scene.mesh.node_sets.at("x_min");
+    for (int i : bottom)
+      if (!std::count(xmin.begin(), xmin.end(), i))
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(r_skip.displacement[3 * i + k], 0.0) << "node " << i;
+    double y_motion = 0;
+    for (int i : b_scene.mesh.node_sets.at("y_min")) y_motion = std::max(y_motion, std::abs(r_skip.displacement[3 * i + 2]));
+    EXPECT_GT(y_motion, 1e-5);
+  }
+}
+
+// A held constraint driven between steps (a haptic tool taking a fixed node) stops being held:
+// its nodes are updated again and the driven run equals the full update bit for bit.
+TEST(HeldNodes, ADrivenConstraintIsNoLongerSkipped) {
+  SteppingScene a_scene, b_scene;
+  dynamics::ExplicitOptions opt_full = held_scene(a_scene, false), opt_skip = held_scene(b_scene, true);
+  fem::ElementSet set_a(a_scene.mesh, a_scene.kinds, a_scene.material),
+      set_b(b_scene.mesh, b_scene.kinds, b_scene.material);
+  const auto masses = dynamics::lumped_mass(a_scene.mesh, a_scene.material.elastic.density);
+  dynamics::ExplicitSolver full(set_a, masses, a_scene.scene, opt_full);
+  dynamics::ExplicitSolver skip(set_b, masses, b_scene.scene, opt_skip);
+  for (dynamics::ExplicitSolver* s : {&full, &skip}) {
+    s->advance(40);
+    s->set_prescribed_displacement(2, Eigen::Vector3d(0.001, 0.0, 0.0));  // x_min, held so far
+    s->advance(60);
+  }
+  expect_same_state(full, skip);
+  EXPECT_EQ(full.reactions(), skip.reactions());
+  const auto& ymin = b_scene.mesh.node_sets.at("y_min");
+  for (int i : b_scene.mesh.node_sets.at("x_min"))
+    if (!std::count(ymin.begin(), ymin.end(), i)) EXPECT_EQ(skip.displacement()[3 * i], 0.001) << "node " << i;
+}

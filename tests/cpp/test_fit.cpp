@@ -599,6 +599,54 @@ TEST(DatasetJson, ReadsTheRpimDatasetPayloadAndChecksIt) {
   }
 }
 
+// A member of an rpim_dataset_set reads exactly as the same payload in its own rpim_dataset;
+// a missing member, or a reference of the wrong shape, is bad input naming what was expected.
+TEST(DatasetJson, AMemberOfADatasetSetReadsLikeItsOwnArtifact) {
+  nlohmann::json nodes = nlohmann::json::array(), disp = nlohmann::json::array();
+  for (int j = 0; j < 4; ++j) {
+    nodes.push_back({0.01 * j, 0.0, 0.006});
+    disp.push_back({1e-4 * j, 0.0, -1e-3 * j});
+  }
+  const nlohmann::json payload = {{"dataset", {{"kind", "axis_z"}, {"count", 1}, {"seed", nullptr}}},
+                                  {"loaded_node", 2},
+                                  {"top_nodes", nodes},
+                                  {"cases", {{{"force", {0.0, 0.0, -0.5}}, {"top_displacement", disp}}}},
+                                  {"unit_solutions", {disp, disp, disp}}};
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "softsim_test_fit_set";
+  std::filesystem::create_directories(dir);
+  const std::string single = (dir / "single.json").string(), set = (dir / "set.json").string();
+  io::write_artifact(single, kDatasetSchema, kDatasetSchemaVersion, io::Provenance{}, payload);
+  io::write_artifact(set, kDatasetSetSchema, kDatasetSetSchemaVersion, io::Provenance{},
+                     {{"members", {{"z", payload}}}, {"timing", {{"total_s", 0.1}}}});
+  const Dataset a = read_dataset(single);
+  const nlohmann::json ref_json = {{"artifact", set}, {"member", "z"}};
+  const DatasetRef ref = dataset_ref_from_json(io::JsonReader(ref_json, "fit.json", "/datasets/z"));
+  EXPECT_EQ(ref.path, set);
+  EXPECT_EQ(ref.member, "z");
+  const Dataset b = read_dataset(ref);
+  EXPECT_EQ(a.nodes, b.nodes);
+  EXPECT_EQ(a.loaded_node, b.loaded_node);
+  ASSERT_EQ(a.case_count(), b.case_count());
+  EXPECT_EQ(a.cases[0].displacement, b.cases[0].displacement);
+  EXPECT_EQ(*a.unit_solutions, *b.unit_solutions);
+  // A plain string is the whole artifact, as before.
+  const nlohmann::json plain = single;
+  EXPECT_TRUE(dataset_ref_from_json(io::JsonReader(plain, "fit.json", "/datasets/z")).member.empty());
+  try {
+    read_dataset(DatasetRef{set, "x"});
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/payload/members"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"x\""), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(read_dataset(DatasetRef{single, "z"}), InputError);  // not a set
+  const nlohmann::json no_member = {{"artifact", set}};
+  EXPECT_THROW(dataset_ref_from_json(io::JsonReader(no_member, "fit.json", "/datasets/z")), InputError);
+  const nlohmann::json extra = {{"artifact", set}, {"member", "z"}, {"other", 1}};
+  EXPECT_THROW(dataset_ref_from_json(io::JsonReader(extra, "fit.json", "/datasets/z")), InputError);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(StaticSeries, TakesTheTopFaceInGridOrderAndTheNearestLoadedNode) {
   // A 4 × 4 × 2 cuboid; each "solution" displaces node i by (i, 2 i, −3 i) µm.
   const mesh::TetMesh m = test_scenes::cuboid(4, 4, 2, 0.04, 0.04, 0.02);

@@ -657,3 +657,36 @@ TEST(Config, MaterialModelDefaultIsFlagged) {
   EXPECT_TRUE(parse({{"mesh", "m"}, {"material", {{"E", 4000}}}}, m).model_defaulted);
   EXPECT_FALSE(parse({{"mesh", "m"}, {"material", {{"model", "neo_hookean_paper"}}}}, m).model_defaulted);
 }
+
+TEST(Output, DisplacementFieldIsWrittenUnlessTheConfigLeavesItOut) {
+  const auto m = cuboid(3, 3, 2, 0.03, 0.03, 0.02);
+  nlohmann::json j = {
+      {"mesh", "m"},
+      {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -0.001}}}}}}},
+      {"solver", {{"steps", 20}}},
+      {"output", {{"trajectories", {{{"set", "top"}}}}, {"trajectory_interval", 5}}}};
+  const hybrid::DhdConfig full_cfg = parse(j, m);
+  EXPECT_TRUE(full_cfg.output.displacement);  // the default keeps the field
+  const hybrid::DhdRun run = hybrid::run_dhd(m, full_cfg);
+  const nlohmann::json full = hybrid::result_payload(m, full_cfg, run);
+  ASSERT_TRUE(full.contains("displacement"));
+  EXPECT_EQ(full.at("displacement").size(), static_cast<std::size_t>(m.num_nodes()));
+
+  j["output"]["displacement"] = false;
+  const hybrid::DhdConfig lean_cfg = parse(j, m);
+  const nlohmann::json lean = hybrid::result_payload(m, lean_cfg, run);
+  EXPECT_FALSE(lean.contains("displacement"));
+  // Everything else a stage reads is still there and unchanged: trajectories, reactions, solver.
+  EXPECT_EQ(lean.at("trajectories"), full.at("trajectories"));
+  EXPECT_EQ(lean.at("reactions"), full.at("reactions"));
+  EXPECT_EQ(lean.at("solver"), full.at("solver"));
+  nlohmann::json stripped = full;
+  stripped.erase("displacement");
+  stripped.erase("timing");
+  nlohmann::json lean_cmp = lean;
+  lean_cmp.erase("timing");
+  EXPECT_EQ(lean_cmp, stripped);
+
+  j["output"]["displacement"] = "no";
+  EXPECT_THROW(parse(j, m), InputError);
+}

@@ -25,6 +25,7 @@
 #include "softsim/meshless/manufactured.hpp"
 #include "softsim/meshless/plate_dataset.hpp"
 #include "softsim/meshless/rpim_config.hpp"
+#include "softsim/meshless/rpim_modes.hpp"
 #include "softsim/meshless/rpim_shape.hpp"
 #include "softsim/meshless/studies.hpp"
 
@@ -551,4 +552,71 @@ TEST(Convergence, GalerkinPatchTestIsPassedInTheLimit) {
   for (std::size_t i = 1; i < study.size(); ++i)
     EXPECT_LT(study[i].result.rms_error, study[i - 1].result.rms_error);
   EXPECT_LT(study.back().result.relative_rms(), 1e-3);
+}
+
+// The Lanczos estimate of K's condition runs only when the config asks for it; the cases, unit
+// solutions and every other conditioning figure are the same bits either way.
+TEST(Dataset, StiffnessConditioningOnlyWhenAsked) {
+  const nlohmann::json base = {{"plate", {{"nodes", {5, 5, 2}}, {"background_cells", {4, 4, 1}}, {"gauss_order", 3}}},
+                               {"rpim", {{"polynomial", "linear"}}},
+                               {"dataset", {{"kind", "axis_z"}, {"count", 3}}}};
+  const nlohmann::json asked_cfg = [&] {
+    nlohmann::json j = base;
+    j["output"] = {{"stiffness_conditioning", true}};
+    return j;
+  }();
+  const RpimOutput plain = run_rpim_mode("dataset", io::JsonReader(base, "run.json"));
+  const RpimOutput asked = run_rpim_mode("dataset", io::JsonReader(asked_cfg, "run.json"));
+  const nlohmann::json& c0 = plain.payload.at("conditioning");
+  const nlohmann::json& c1 = asked.payload.at("conditioning");
+  EXPECT_TRUE(c0.at("stiffness_penalized").is_null());
+  EXPECT_TRUE(c0.at("stiffness_free_dofs").is_null());
+  ASSERT_FALSE(c1.at("stiffness_free_dofs").is_null());
+  EXPECT_GT(c1.at("stiffness_free_dofs").at("condition").get<double>(), 1.0);
+  EXPECT_GT(c1.at("stiffness_penalized").at("condition").get<double>(), 1.0);
+  EXPECT_EQ(plain.payload.at("cases"), asked.payload.at("cases"));
+  EXPECT_EQ(plain.payload.at("unit_solutions"), asked.payload.at("unit_solutions"));
+  nlohmann::json rest0 = c0, rest1 = c1;
+  for (auto* r : {&rest0, &rest1}) {
+    r->erase("stiffness_penalized");
+    r->erase("stiffness_free_dofs");
+  }
+  EXPECT_EQ(rest0, rest1);
+}
+
+// Several datasets of one plate ("datasets") are built and factored once, and each member is
+// the payload its own single run writes, bit for bit (timings aside).
+TEST(Dataset, NamedSetsShareOneBuildAndEqualTheSingleRuns) {
+  const nlohmann::json plate = {{"nodes", {5, 5, 2}}, {"background_cells", {4, 4, 1}}, {"gauss_order", 3}};
+  const nlohmann::json specs = {{"x", {{"kind", "axis_x"}, {"count", 3}}},
+                                {"random", {{"kind", "random"}, {"count", 4}, {"seed", 7}}},
+                                {"check", {{"kind", "check"}}}};
+  const nlohmann::json indentation = {{"force", 0.4}, {"depth", 0.006}, {"probe_radius", 0.002}, {"poisson_ratio", 0.49}};
+  const nlohmann::json rpim = {{"polynomial", "linear"}};  // so few nodes need it
+  const nlohmann::json set_cfg = {{"plate", plate}, {"rpim", rpim}, {"datasets", specs}, {"indentation", indentation}};
+  const RpimOutput set = run_rpim_mode("dataset", io::JsonReader(set_cfg, "run.json"));
+  EXPECT_EQ(set.schema, "rpim_dataset_set");
+  ASSERT_TRUE(set.seed.has_value());
+  EXPECT_EQ(*set.seed, 7u);
+  const nlohmann::json& members = set.payload.at("members");
+  ASSERT_EQ(members.size(), 3u);
+  EXPECT_EQ(set.payload.at("timing").at("datasets"), 3);
+  for (const auto& [name, spec] : specs.items()) {
+    const nlohmann::json one_cfg = {{"plate", plate}, {"rpim", rpim}, {"dataset", spec}, {"indentation", indentation}};
+    const RpimOutput one = run_rpim_mode("dataset", io::JsonReader(one_cfg, "run.json"));
+    EXPECT_EQ(one.schema, "rpim_dataset");
+    nlohmann::json a = one.payload, b = members.at(name);
+    EXPECT_EQ(a.at("timing").at("cases_solved"), b.at("timing").at("cases_solved")) << name;
+    a.erase("timing");
+    b.erase("timing");
+    EXPECT_EQ(a, b) << name;  // cases, unit solutions, conditioning, plate, model: the same bits
+  }
+  // Exactly one of "dataset" and "datasets".
+  nlohmann::json both = set_cfg;
+  both["dataset"] = specs.at("x");
+  EXPECT_THROW(run_rpim_mode("dataset", io::JsonReader(both, "run.json")), InputError);
+  const nlohmann::json neither = {{"plate", plate}, {"rpim", rpim}};
+  EXPECT_THROW(run_rpim_mode("dataset", io::JsonReader(neither, "run.json")), InputError);
+  const nlohmann::json empty = {{"plate", plate}, {"rpim", rpim}, {"datasets", nlohmann::json::object()}};
+  EXPECT_THROW(run_rpim_mode("dataset", io::JsonReader(empty, "run.json")), InputError);
 }

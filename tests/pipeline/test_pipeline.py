@@ -150,6 +150,23 @@ def test_kernel_ratios_are_relative_to_tled_and_judge_the_target(tmp_path):
     assert kernel_ratios(tmp_path / "missing.json") == []
 
 
+def test_held_nodes_lines_give_the_median_speed_up_of_each_partition(tmp_path):
+    from pipeline.bench_held import held_nodes_lines
+    path = tmp_path / "bench_dhd.json"
+    runs = []
+    for skip, times in ((0, [50.0, 40.0, 44.0]), (1, [36.0, 40.0, 30.0])):
+        name = f"BM_HeldNodes/partition:2/skip:{skip}/real_time"
+        runs += [{"name": name, "run_name": name, "run_type": "iteration", "real_time": 9.0, "cpu_time": t,
+                  "ns_per_node": 10.0 - 3 * skip} for t in times]
+    runs.append({"name": "BM_HeldNodes/partition:2/skip:0/real_time_mean", "run_name": "BM_HeldNodes/partition:2/skip:0/real_time",
+                 "run_type": "aggregate", "real_time": 1.0, "cpu_time": 1.0})
+    path.write_text(json.dumps({"benchmarks": runs}))
+    text = "\n".join(held_nodes_lines(path))
+    assert "| all linear (assembled rows) | 3 | 40 | 30 | 1.333 | 1.222 | 10 | 7 |" in text   # fastest, medians; no aggregates
+    assert "all TLED" not in text                                           # not measured, no row
+    assert held_nodes_lines(tmp_path / "missing.json") == []
+
+
 def test_cpu_description_names_the_model_and_the_widest_vector_extension(tmp_path):
     from pipeline.bench import cpu_description
     info = tmp_path / "cpuinfo"

@@ -101,3 +101,26 @@ def test_convergence_tables_hold_every_refinement_and_the_observed_rates(tmp_pat
     assert [float(r[3]) for r in rows[1:]] == pytest.approx(err)
     assert [float(r[4]) for r in rows[1:]] == pytest.approx([2 * e for e in err])
     assert read_csv(tmp_path / "rpim_convergence_rates.csv")[1] == [label, "2.0", "1.9"]
+
+
+def test_dataset_set_members_are_read_by_stage_and_member_and_their_build_counts_once(tmp_path):
+    def member(kind, total_s, solves_s):
+        p = dataset(total_s=total_s)
+        p["dataset"] = {"kind": kind, "count": 1, "seed": None}
+        p["cases"][0]["force"] = [0.0, 0.0, -1.0]
+        p["timing"].update({"cases_solved": 4, "shape_functions_s": 0.1, "assembly_s": 0.1, "penalty_s": 0.0,
+                            "factorisation_s": 0.2, "solves_s": solves_s, "threads": 2})
+        return p
+    members = {"x": member("axis_x", 0.45, 0.05), "check": member("check", 0.42, 0.02)}
+    whole = {"members": members, "timing": {"build_s": 0.4, "solves_s": 0.07, "total_s": 0.47, "datasets": 2,
+                                             "cases_solved": 8}}
+    ctx = FakeContext(tmp_path, runs={"datasets": [run(whole)]})
+    assert rpim_model._single(ctx, "datasets/check") is members["check"]
+    assert rpim_model._payloads(ctx, "datasets/x") == [members["x"]]
+    with pytest.raises(ValueError, match="no dataset member 'y'"):
+        rpim_model._payloads(ctx, "datasets/y")
+    total = rpim_model._datasets_table(ctx, ["datasets/x", "datasets/check"], {})
+    assert total == pytest.approx(0.47)          # the shared build once, not 0.45 + 0.42
+    rows = read_csv(tmp_path / "rpim_timing.csv")
+    assert [r[0] for r in rows[1:]] == ["datasets/x", "datasets/check", "datasets: all 2 datasets, one build",
+                                        "paper: one full RPIM solve (002 §5.1.2)"]

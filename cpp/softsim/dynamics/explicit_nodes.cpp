@@ -38,8 +38,10 @@ void ExplicitSolver::update_nodes(const int* list, int begin, int split, int end
     update_node<kGravity, kApplied>(list[k], up, uc, un, check, f, g);
   }
   for (int k = split; k < end; ++k) {
-    double f[3];
-    update_node<kGravity, kApplied>(list[k], up, uc, un, check, f, g);
+    // A held node's eq. 33 value would be overwritten by its constraints: skip the gather and
+    // the update (its internal force is only needed for a moving constraint, never held).
+    double f[3] = {0.0, 0.0, 0.0};
+    if (!held_[list[k]]) update_node<kGravity, kApplied>(list[k], up, uc, un, check, f, g);
     update_special(list[k], step, f, up, uc, un);
   }
 }

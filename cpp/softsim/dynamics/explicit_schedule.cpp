@@ -75,4 +75,21 @@ void ExplicitSolver::build_schedule() {
       static_cast<int>(trajectory_order_.size()));
 }
 
+// A node is held when constraints fix all three of its components and none of them moves: its
+// update is the constraint's value alone (a fixed constraint's reaction comes from reactions(),
+// not from the step), so the step neither gathers nor integrates it.
+void ExplicitSolver::mark_held_nodes() {
+  held_.assign(n_, 0);
+  if (!opt_.skip_held_nodes) return;
+  for (int i = 0; i < n_; ++i) {
+    int components = 0;
+    bool moves = false;
+    for (int e = dof_begin_[i]; e < dof_begin_[i + 1]; ++e) {
+      components |= 1 << dofs_[e].component;
+      moves = moves || moving_[dofs_[e].constraint];
+    }
+    held_[i] = components == 7 && !moves;
+  }
+}
+
 }  // namespace softsim::dynamics

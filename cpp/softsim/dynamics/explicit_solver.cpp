@@ -190,6 +190,7 @@ void ExplicitSolver::start() {
   dofs_ = resolve_constraints(scene_, n_);
   for (std::size_t c = 0; c < scene_.constraints.size(); ++c)
     moving_[c] = scene_.constraints[c].displacement.squaredNorm() > 0 && scene_.constraints[c].ramp.duration > 0;
+  mark_held_nodes();
   dof_work_.assign(dofs_.size(), 0.0);
   dof_force_.assign(dofs_.size(), 0.0);
   load_work_.assign(loads_.size(), 0.0);
@@ -497,7 +498,10 @@ void ExplicitSolver::set_prescribed_displacement(int c, const Eigen::Vector3d& v
   scene_.constraints[c].displacement = value;
   scene_.constraints[c].ramp.duration = 0;
   for (auto& d : dofs_)
-    if (d.constraint == c) d.value = value[d.component];
+    if (d.constraint == c) {
+      d.value = value[d.component];
+      held_[d.node] = 0;  // a driven constraint needs its nodes' internal force
+    }
   // Work is booked from the next step on; a dof that was held fixed did no work before it.
   moving_[c] = 1;
 }

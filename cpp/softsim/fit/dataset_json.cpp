@@ -68,4 +68,23 @@ Dataset read_dataset(const std::string& path) {
   return dataset_from_json(artifact.payload(), path);
 }
 
+bool is_dataset_member_ref(const io::JsonReader& node) { return node.raw().is_object() && node.has("artifact"); }
+
+DatasetRef dataset_ref_from_json(const io::JsonReader& node) {
+  if (node.raw().is_string()) return {node.as_string(), ""};
+  if (!is_dataset_member_ref(node)) node.fail("an rpim_dataset path or {\"artifact\": path, \"member\": name}");
+  DatasetRef ref{node.get_string("artifact"), node.get_string("member")};
+  node.require(!ref.member.empty(), "member", "the name of a member of the rpim_dataset_set");
+  node.reject_unknown();
+  return ref;
+}
+
+Dataset read_dataset(const DatasetRef& ref) {
+  if (ref.member.empty()) return read_dataset(ref.path);
+  const io::Artifact artifact = io::Artifact::read(ref.path, kDatasetSetSchema, kDatasetSetSchemaVersion);
+  const io::JsonReader members = artifact.payload().at("members");
+  if (!members.has(ref.member)) members.fail("a member named \"" + ref.member + "\"");
+  return dataset_from_json(members.at(ref.member), ref.label());
+}
+
 }  // namespace softsim::fit

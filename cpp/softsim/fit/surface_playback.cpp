@@ -26,7 +26,7 @@ PlaybackConfig read_playback_config(const io::JsonReader& cfg) {
   const io::JsonReader forces_node = cfg.at("forces");
   for (std::size_t i = 0; i < forces_node.size(); ++i) c.forces.push_back(read_force(forces_node[i]));
   if (c.forces.empty()) forces_node.fail("at least one force");
-  c.reference_path = cfg.get_string("reference", "");
+  if (cfg.has("reference")) c.reference = dataset_ref_from_json(cfg.at("reference"));
   cfg.reject_unknown();
   return c;
 }
@@ -38,10 +38,11 @@ void require_same_nodes(const Dataset& ds, const FitModel& model) {
 
 namespace {
 
-Superposition read_playback_reference(const std::string& path, const FitModel& model) {
-  Dataset ref = read_dataset(path);
+Superposition read_playback_reference(const DatasetRef& source, const FitModel& model) {
+  Dataset ref = read_dataset(source);
   require_same_nodes(ref, model);
-  if (!ref.unit_solutions) throw InputError(path + ": /payload/unit_solutions: expected unit solutions for the reference");
+  if (!ref.unit_solutions)
+    throw InputError(source.label() + ": /payload/unit_solutions: expected unit solutions for the reference");
   return Superposition(std::move(*ref.unit_solutions));
 }
 
@@ -79,7 +80,7 @@ nlohmann::json surface_playback_payload(const std::string& fit_path, const FitMo
 nlohmann::json play_back(const PlaybackConfig& config) {
   const FitModel model = read_fit_model(config.fit_path);
   std::optional<Superposition> exact;
-  if (!config.reference_path.empty()) exact.emplace(read_playback_reference(config.reference_path, model));
+  if (!config.reference.path.empty()) exact.emplace(read_playback_reference(config.reference, model));
   return surface_playback_payload(config.fit_path, model, config.forces, exact);
 }
 

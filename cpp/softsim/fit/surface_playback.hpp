@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "softsim/fit/dataset.hpp"
+#include "softsim/fit/dataset_json.hpp"
 #include "softsim/fit/model.hpp"
 #include "softsim/io/json_reader.hpp"
 
@@ -21,7 +22,7 @@ inline constexpr int kPlaybackSchemaVersion = 1;
 struct PlaybackConfig {
   std::string fit_path;                  // the marquardt_fit artifact
   std::vector<Eigen::Vector3d> forces;   // N
-  std::string reference_path;            // an rpim_dataset with unit solutions, or ""
+  DatasetRef reference;                  // a dataset with unit solutions, or an empty path
 };
 
 // Reads the whole play config (rejecting unknown keys) without touching any file.

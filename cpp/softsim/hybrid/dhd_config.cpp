@@ -326,6 +326,7 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   out.trajectory_interval = o->get_int32("trajectory_interval", 1);
   o->require(out.trajectory_interval >= 1, "trajectory_interval", "a positive step count");
   out.velocity = o->get_bool("velocity", false);
+  out.displacement = o->get_bool("displacement", true);
   o->reject_unknown();
 }
 

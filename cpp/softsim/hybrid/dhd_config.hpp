@@ -36,6 +36,7 @@ struct OutputConfig {
   std::vector<int> trajectory_nodes;
   int trajectory_interval = 1;
   bool velocity = false;
+  bool displacement = true;  // the final displacement field in the artifact
 };
 
 struct BenchConfig {

@@ -62,9 +62,10 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
 
 nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, const DhdRun& run) {
   nlohmann::json p;
-  const std::vector<double>& u =
-      run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement;
-  p["displacement"] = field(u);
+  // The full field is most of the artifact on a large mesh; a run read only for its trajectories,
+  // reactions or timing leaves it out (output.displacement = false).
+  if (c.output.displacement)
+    p["displacement"] = field(run.explicit_result ? run.explicit_result->displacement : run.static_result->displacement);
   if (c.output.velocity && run.explicit_result) p["velocity"] = field(run.explicit_result->velocity);
   std::vector<int> kinds(run.kinds.size());
   std::array<int, fem::kNumElementKinds> counts{};

@@ -50,5 +50,11 @@ struct PlateRun {
 // Throws NumericalError from the model; `stiffness_conditioning` adds the eigenvalue estimates.
 PlateRun run_plate(const PlateScene& scene, const RpimSettings& settings, const std::vector<Eigen::Vector3d>& forces,
                    bool stiffness_conditioning);
+// Several force sets on one model: built, factored and diagnosed once, each set then solved as
+// the single-set run_plate solves it (same bits). Every run carries the shared build timings;
+// its total_s is the build plus its own solves.
+std::vector<PlateRun> run_plate_sets(const PlateScene& scene, const RpimSettings& settings,
+                                const std::vector<std::vector<Eigen::Vector3d>>& force_sets,
+                                bool stiffness_conditioning);
 
 }  // namespace softsim::meshless

@@ -15,43 +15,91 @@ RpimSettings read_settings(const io::JsonReader& cfg) {
   return read_rpim_settings(cfg.optional("rpim"), cfg.optional("penalty"), cfg.optional("solver"));
 }
 
+nlohmann::json indentation_json(const IndentationInputs& in, double scene_modulus) {
+  const IndentationModulus m = lee_radok_modulus(in.force, in.depth, in.probe_radius, in.poisson_ratio);
+  return {{"force", in.force},
+          {"depth", in.depth},
+          {"probe_radius", in.probe_radius},
+          {"poisson_ratio", in.poisson_ratio},
+          {"shear_modulus", m.shear_modulus},
+          {"youngs_modulus", m.youngs_modulus},
+          {"scene_youngs_modulus", scene_modulus},
+          {"ratio_to_scene", m.youngs_modulus / scene_modulus}};
+}
+
+// One dataset ("dataset": {...}) or several of one model ("datasets": {name: {...}}): the
+// latter builds and factors the plate once and writes an "rpim_dataset_set" whose members are
+// the payloads the single runs would write (timings aside).
 RpimOutput run_dataset(const io::JsonReader& cfg) {
   const PlateScene scene = read_plate_scene(cfg.optional("plate"));
   const RpimSettings settings = read_settings(cfg);
-  const DatasetSpec spec = read_dataset_spec(cfg.at("dataset"));
-  bool all_nodes = false, stiffness_conditioning = true;
+  const bool several = cfg.has("datasets");
+  if (several && cfg.has("dataset"))
+    cfg.fail_member("datasets", "either \"dataset\" (one force set) or \"datasets\" (named sets), not both");
+  std::vector<std::string> names;
+  std::vector<DatasetSpec> specs;
+  if (several) {
+    const io::JsonReader sets = cfg.at("datasets");
+    if (!sets.raw().is_object() || sets.raw().empty()) sets.fail("an object of named dataset specs");
+    for (const auto& [name, value] : sets.raw().items()) {
+      names.push_back(name);
+      specs.push_back(read_dataset_spec(sets.at(name)));
+    }
+  } else {
+    specs.push_back(read_dataset_spec(cfg.at("dataset")));
+  }
+  bool all_nodes = false, stiffness_conditioning = false;  // the Lanczos estimate only when asked
   if (const auto out = cfg.optional("output")) {
     all_nodes = out->get_bool("all_nodes", false);
-    stiffness_conditioning = out->get_bool("stiffness_conditioning", true);
+    stiffness_conditioning = out->get_bool("stiffness_conditioning", false);
     out->reject_unknown();
   }
   std::optional<IndentationInputs> indentation;
   if (const auto ind = cfg.optional("indentation")) indentation = read_indentation(*ind);
   cfg.reject_unknown();
-  RpimOutput out{"rpim_dataset", nullptr, std::nullopt, ""};
-  if (spec.kind == DatasetKind::random) out.seed = spec.seed;
 
-  const PlateRun run = run_plate(scene, settings, dataset_forces(spec), stiffness_conditioning);
-  out.payload = dataset_payload(scene, settings, spec, run, all_nodes);
-  if (indentation) {
-    const IndentationModulus m = lee_radok_modulus(indentation->force, indentation->depth,
-                                                   indentation->probe_radius, indentation->poisson_ratio);
-    out.payload["indentation"] = {{"force", indentation->force},
-                                  {"depth", indentation->depth},
-                                  {"probe_radius", indentation->probe_radius},
-                                  {"poisson_ratio", indentation->poisson_ratio},
-                                  {"shear_modulus", m.shear_modulus},
-                                  {"youngs_modulus", m.youngs_modulus},
-                                  {"scene_youngs_modulus", scene.youngs_modulus},
-                                  {"ratio_to_scene", m.youngs_modulus / scene.youngs_modulus}};
+  std::vector<std::vector<Eigen::Vector3d>> force_sets;
+  for (const auto& spec : specs) force_sets.push_back(dataset_forces(spec));
+  const std::vector<PlateRun> runs = run_plate_sets(scene, settings, force_sets, stiffness_conditioning);
+  std::vector<nlohmann::json> payloads;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    payloads.push_back(dataset_payload(scene, settings, specs[k], runs[k], all_nodes));
+    if (indentation) payloads.back()["indentation"] = indentation_json(*indentation, scene.youngs_modulus);
   }
+
+  const PlateRun& run = runs.front();
   const int l = run.loaded_node_index;
+  const double build_s = run.timings.total_s - run.timings.solves_s;
+  double solves_s = 0;
+  int cases = 0;
+  for (const auto& r : runs) {
+    cases += static_cast<int>(r.forces.size());
+    solves_s += r.timings.solves_s;
+  }
   std::ostringstream summary;
-  summary << run.nodes.size() << " nodes, " << run.forces.size() << " cases; node " << run.loaded_node_number
-          << " compliance (" << run.unit_solutions(3 * l, 0) << ", " << run.unit_solutions(3 * l + 1, 1) << ", "
-          << run.unit_solutions(3 * l + 2, 2) << ") m/N; " << run.timings.total_s << " s";
-  out.summary = summary.str();
-  return out;
+  summary << run.nodes.size() << " nodes, " << runs.size() << (several ? " datasets, " : " dataset, ") << cases
+          << " cases; node " << run.loaded_node_number << " compliance (" << run.unit_solutions(3 * l, 0) << ", "
+          << run.unit_solutions(3 * l + 1, 1) << ", " << run.unit_solutions(3 * l + 2, 2) << ") m/N; "
+          << build_s + solves_s << " s";
+  if (!several) {
+    RpimOutput out{"rpim_dataset", std::move(payloads.front()), std::nullopt, summary.str()};
+    if (specs.front().kind == DatasetKind::random) out.seed = specs.front().seed;
+    return out;
+  }
+  nlohmann::json members = nlohmann::json::object();
+  std::optional<std::uint64_t> seed;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    members[names[k]] = std::move(payloads[k]);
+    if (specs[k].kind == DatasetKind::random && !seed) seed = specs[k].seed;  // the first random set's
+  }
+  nlohmann::json payload = {{"members", std::move(members)},
+                            {"timing", {{"build_s", build_s},
+                                        {"solves_s", solves_s},
+                                        {"total_s", build_s + solves_s},
+                                        {"conditioning_s", run.timings.conditioning_s},
+                                        {"datasets", runs.size()},
+                                        {"cases_solved", cases + 3 * static_cast<int>(runs.size())}}}};
+  return {"rpim_dataset_set", std::move(payload), seed, summary.str()};
 }
 
 RpimOutput run_stability(const io::JsonReader& cfg) {
