@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/static_solver.hpp"
@@ -16,6 +17,7 @@
 #include "softsim/haptic/haptic_scene.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/io/errors.hpp"
+#include "softsim/mesh/surface.hpp"
 
 #include "support/scenes.hpp"
 
@@ -169,6 +171,43 @@ TEST(HapticScene, AFailurePastInversionIsReportedAndTheFramesGoOn) {
   ASSERT_FALSE(scene.events().empty());
   EXPECT_NE(scene.events().front().message.find("inverted"), std::string::npos) << scene.events().front().message;
   for (const auto& f : r.force) EXPECT_TRUE(f.allFinite());
+}
+
+// A blade on the tool (019): dragged across the block, it cuts the elements it passes; the
+// contact surface, updated locally at each cut, is the outward boundary of the mesh left (the
+// same oriented triangles as extracted from scratch); the frames go on without events.
+TEST(HapticScene, ABladeOnTheToolCutsAndTheSurfaceFollows) {
+  Block b;
+  haptic::HapticOptions opt = spring(100);
+  opt.contact = haptic::ContactMode::push;
+  opt.blade = true;
+  opt.blade_edge = Eigen::Vector3d(0, 0, 0.04);  // vertical: 2 cm above and below the tip
+  haptic::HapticScene scene(b.mesh, b.config(40), opt);
+  const int before = scene.surface().num_triangles();
+  // The tip 1 cm below the top, drawn along x from 3 to 7 cm at y = 5.2 cm.
+  for (long k = 0; k <= 400; ++k) scene.frame(Eigen::Vector3d(0.03 + 0.04 * k / 400.0, 0.052, 0.04));
+  ASSERT_TRUE(scene.events().empty());
+  const auto& cuts = scene.model().cut_events();
+  ASSERT_FALSE(cuts.empty());
+  std::vector<int> removed;
+  for (int e = 0; e < b.mesh->num_tets(); ++e)
+    if (scene.model().removed(e)) removed.push_back(e);
+  EXPECT_GT(removed.size(), 10u);
+  mesh::TetMesh left = *b.mesh;
+  left.tets.clear();
+  for (int e = 0; e < b.mesh->num_tets(); ++e)
+    if (!scene.model().removed(e)) left.tets.push_back(b.mesh->tets[e]);
+  // Oriented triangles, each rotated to start at its smallest node.
+  auto canonical = [](std::array<int, 3> t) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return t;
+  };
+  std::set<std::array<int, 3>> fresh, followed;
+  for (const auto& t : mesh::extract_boundary(left, "cut block")) fresh.insert(canonical(t));
+  for (int t = 0; t < scene.surface().num_triangles(); ++t)
+    if (scene.surface().live(t)) followed.insert(canonical(scene.surface().triangle(t)));
+  EXPECT_EQ(followed, fresh);
+  EXPECT_GT(static_cast<int>(fresh.size()), before);
 }
 
 TEST(RecordedPath, ReadStrictlyAndInterpolated) {

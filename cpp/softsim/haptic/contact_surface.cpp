@@ -1,6 +1,9 @@
 #include "softsim/haptic/contact_surface.hpp"
 
+#include <algorithm>
 #include <limits>
+#include <map>
+#include <set>
 
 #include "softsim/io/errors.hpp"
 
@@ -45,15 +48,59 @@ Eigen::Vector3d closest_weights(const Eigen::Vector3d& p, const Eigen::Vector3d&
 
 ContactSurface::ContactSurface(const mesh::TetMesh& mesh) : mesh_(mesh), triangles_(mesh.boundary) {
   if (triangles_.empty()) throw InputError("contact surface: the mesh has no boundary triangles");
-  const int n = mesh.num_nodes();
+  live_.assign(triangles_.size(), 1);
+  index_nodes();
+}
+
+void ContactSurface::index_nodes() {
+  const int n = mesh_.num_nodes();
   node_triangle_begin_.assign(n + 1, 0);
-  for (const auto& t : triangles_)
-    for (int v : t) ++node_triangle_begin_[v + 1];
+  for (int t = 0; t < num_triangles(); ++t)
+    if (live_[t])
+      for (int v : triangles_[t]) ++node_triangle_begin_[v + 1];
   for (int i = 0; i < n; ++i) node_triangle_begin_[i + 1] += node_triangle_begin_[i];
   node_triangles_.resize(node_triangle_begin_[n]);
   std::vector<int> fill(node_triangle_begin_.begin(), node_triangle_begin_.end() - 1);
   for (int t = 0; t < num_triangles(); ++t)
-    for (int v : triangles_[t]) node_triangles_[fill[v]++] = t;
+    if (live_[t])
+      for (int v : triangles_[t]) node_triangles_[fill[v]++] = t;
+}
+
+void ContactSurface::remove_elements(const std::vector<int>& elements, const std::function<bool(int)>& removed) {
+  if (elements.empty()) return;
+  using Face = std::array<int, 3>;
+  auto key = [](Face f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  static constexpr int kOpposite[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  // The faces of the removed elements, and the live triangles among them.
+  std::map<Face, int> surface;  // sorted face -> live triangle
+  std::set<Face> cut_faces;
+  for (int e : elements)
+    for (const auto& f : kOpposite) cut_faces.insert(key({mesh_.tets[e][f[0]], mesh_.tets[e][f[1]], mesh_.tets[e][f[2]]}));
+  for (int t = 0; t < num_triangles(); ++t)
+    if (live_[t] && cut_faces.count(key(triangles_[t]))) surface[key(triangles_[t])] = t;
+  for (const auto& [face, t] : surface) live_[t] = 0;
+  // A removed element's face that was not on the surface had a neighbour: if that one is left,
+  // its face joins the surface, oriented outward from it (kOpposite keeps the mesh's outward
+  // orientation for a positively oriented tetrahedron). One pass over the elements.
+  std::set<Face> uncovered;
+  for (const auto& f : cut_faces)
+    if (!surface.count(f)) uncovered.insert(f);
+  if (!uncovered.empty())
+    for (int e = 0; e < mesh_.num_tets(); ++e) {
+      if (removed(e)) continue;
+      const auto& t = mesh_.tets[e];
+      for (const auto& f : kOpposite) {
+        const Face face = {t[f[0]], t[f[1]], t[f[2]]};
+        if (uncovered.count(key(face))) {
+          triangles_.push_back(face);
+          live_.push_back(1);
+        }
+      }
+    }
+  index_nodes();
 }
 
 Eigen::Vector3d ContactSurface::deformed(int node, const double* u) const {
@@ -82,6 +129,7 @@ SurfacePoint ContactSurface::closest(const Eigen::Vector3d& x, const double* u) 
   SurfacePoint best;
   double best_d = std::numeric_limits<double>::infinity();
   for (int t = 0; t < num_triangles(); ++t) {
+    if (!live_[t]) continue;
     const SurfacePoint s = closest_on(t, x, u);
     const double d = (s.position - x).squaredNorm();
     if (d < best_d) {

@@ -7,6 +7,7 @@
 // so the force has no jump when the contact passes from one node to the next; a contact held
 // on the nearest node (001's collision step) would jump by the spring's whole force.
 #include <array>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,12 +41,23 @@ class ContactSurface {
   // The point of `triangle` with barycentric `weights`, in the deformed state.
   SurfacePoint at(int triangle, const Eigen::Vector3d& weights, const double* u) const;
 
+  // A cut removed `elements` (019): their faces on the surface leave it, and the faces they
+  // uncover on the elements left join it, oriented outward. Triangle indices of the faces that
+  // stay do not change (a contact on one stays valid); removed triangles are never returned
+  // again. The node → triangle lists are rebuilt (linear in the surface size). `removed(e)`:
+  // element e is gone (the ones given here included).
+  void remove_elements(const std::vector<int>& elements, const std::function<bool(int)>& removed);
+  bool live(int triangle) const { return live_[triangle] != 0; }
+  const std::array<int, 3>& triangle(int t) const { return triangles_[t]; }
+
  private:
+  void index_nodes();
   SurfacePoint closest_on(int triangle, const Eigen::Vector3d& x, const double* u) const;
   Eigen::Vector3d deformed(int node, const double* u) const;
 
   const mesh::TetMesh& mesh_;
   std::vector<std::array<int, 3>> triangles_;
+  std::vector<char> live_;  // per triangle: still on the surface
   std::vector<int> node_triangle_begin_, node_triangles_;  // CSR: triangles at each node
 };
 

@@ -86,6 +86,12 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
   c.options.probe_stiffness = probe.get_positive("stiffness");
   c.options.contact = probe.get_choice("contact", {"grasp", "push"}, "grasp") == "push" ? ContactMode::push : ContactMode::grasp;
   probe.reject_unknown();
+  if (const auto blade = cfg.optional("blade")) {
+    c.options.blade = true;
+    c.options.blade_edge = hybrid::read_vec3(*blade, "edge");
+    blade->require(c.options.blade_edge.norm() > 0, "edge", "a blade edge of non-zero length (m)");
+    blade->reject_unknown();
+  }
   read_input(cfg.at("input"), mesh, c);
   c.frames = cfg.get_int("frames", c.frames);
   cfg.require(c.frames >= 1 && c.frames <= 100000000, "frames", "a frame count in [1, 10^8]");

@@ -69,6 +69,13 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
   nlohmann::json events = nlohmann::json::array();
   for (const auto& e : scene.events()) events.push_back({{"frame", e.frame}, {"message", e.message}});
   std::vector<int> contact(record.contact.begin(), record.contact.end());
+  nlohmann::json cuts = nlohmann::json::array();
+  for (const auto& ev : scene.model().cut_events())
+    cuts.push_back({{"time", ev.time},
+                    {"elements_removed", ev.report.elements.size()},
+                    {"pieces", ev.pieces},
+                    {"loose_pieces", ev.loose_pieces},
+                    {"seconds", ev.search_seconds + ev.report.seconds + ev.pieces_seconds}});
   return {
       {"mode", mode},
       {"solver", "whole_model"},
@@ -85,6 +92,7 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
       {"force", rows(record.force)},
       {"contact", contact},
       {"events", events},
+      {"cuts", cuts},
       {"timing", {{"frame_seconds_p50", ft.p50}, {"frame_seconds_p99", ft.p99}, {"frame_seconds_max", ft.max},
                   {"deadline_misses", ft.deadline_misses}, {"threads", config.model.threads}}},
   };

@@ -53,9 +53,36 @@ void HapticScene::reset() {
 }
 
 void HapticScene::back_to_rest() {
-  model_->reset();
+  model_->reset();  // cuts are permanent: the model returns to rest with its cut mesh
   in_contact_ = false;
   contact_ = SurfacePoint();
+  has_previous_tip_ = false;
+}
+
+void HapticScene::cut_with_blade(const Eigen::Vector3d& probe) {
+  if (options_.blade && has_previous_tip_) {
+    cutting::BladeSweep sweep;
+    const Eigen::Vector3d half = 0.5 * options_.blade_edge;
+    sweep.a0 = previous_tip_ - half;
+    sweep.b0 = previous_tip_ + half;
+    sweep.a1 = probe - half;
+    sweep.b1 = probe + half;
+    // A tool at rest, or moving along its own edge, sweeps no area: nothing to cut this frame.
+    if (cutting::sweep_problem(sweep).empty()) model_->cut(sweep);
+  }
+  previous_tip_ = probe;
+  has_previous_tip_ = true;
+  follow_cuts();
+}
+
+void HapticScene::follow_cuts() {
+  const auto& events = model_->cut_events();
+  for (; cuts_seen_ < events.size(); ++cuts_seen_)
+    surface_.remove_elements(events[cuts_seen_].report.elements, [this](int e) { return model_->removed(e); });
+  if (in_contact_ && !surface_.live(contact_.triangle)) {
+    in_contact_ = false;
+    contact_ = SurfacePoint();
+  }
 }
 
 void HapticScene::update_contact(const Eigen::Vector3d& probe, const double* u) {
@@ -76,6 +103,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
   if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
   const double k = options_.probe_stiffness;
   try {
+    cut_with_blade(probe);
     update_contact(probe, model_->displacement());
     Eigen::Vector3d f = Eigen::Vector3d::Zero();  // on the tissue
     if (in_contact_) {
@@ -93,6 +121,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       model_->solver().set_applied_forces({});
     }
     model_->step(substeps_);
+    follow_cuts();  // a cut the config scheduled inside this frame
     if (!in_contact_) return Eigen::Vector3d::Zero();
     contact_ = surface_.at(contact_.triangle, contact_.weights, model_->displacement());
     return -k * (probe - contact_.position);

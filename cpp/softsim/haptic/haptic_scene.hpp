@@ -31,6 +31,10 @@ struct HapticOptions {
   double frame_step = 1e-3;       // s (1 kHz)
   double probe_stiffness = 100;   // k (N/m)
   ContactMode contact = ContactMode::grasp;
+  // A blade on the tool (019): an edge from tip − blade_edge/2 to tip + blade_edge/2 that cuts,
+  // each frame, the elements its sweep from the previous tip to the current one crosses.
+  bool blade = false;
+  Eigen::Vector3d blade_edge = Eigen::Vector3d::Zero();  // m
 };
 
 struct FrameEvent {
@@ -62,6 +66,10 @@ class HapticScene {
 
  private:
   void update_contact(const Eigen::Vector3d& probe, const double* u);
+  // The blade's cut of this frame, then the surface brought up to the model's cuts (the blade's
+  // and the config's scheduled ones); a contact on a triangle that left the surface ends.
+  void cut_with_blade(const Eigen::Vector3d& probe);
+  void follow_cuts();
   // The model at rest and no contact; frames and events kept (recovery from a failure).
   void back_to_rest();
 
@@ -74,6 +82,9 @@ class HapticScene {
   SurfacePoint contact_;
   long frames_ = 0;
   std::vector<FrameEvent> events_;
+  Eigen::Vector3d previous_tip_ = Eigen::Vector3d::Zero();
+  bool has_previous_tip_ = false;
+  std::size_t cuts_seen_ = 0;  // the model's cut events the surface has followed
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
 };
 
