@@ -93,6 +93,9 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
       {"contact", contact},
       {"events", events},
       {"cuts", cuts},
+      {"blade", {{"sweeps", scene.blade_stats().sweeps},
+                 {"seconds_mean", scene.blade_stats().sweeps ? scene.blade_stats().seconds / scene.blade_stats().sweeps : 0.0},
+                 {"seconds_max", scene.blade_stats().max_seconds}}},
       {"timing", {{"frame_seconds_p50", ft.p50}, {"frame_seconds_p99", ft.p99}, {"frame_seconds_max", ft.max},
                   {"deadline_misses", ft.deadline_misses}, {"threads", config.model.threads}}},
   };

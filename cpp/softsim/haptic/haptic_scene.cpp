@@ -1,5 +1,6 @@
 #include "softsim/haptic/haptic_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "softsim/dynamics/stable_step.hpp"
@@ -68,7 +69,13 @@ void HapticScene::cut_with_blade(const Eigen::Vector3d& probe) {
     sweep.a1 = probe - half;
     sweep.b1 = probe + half;
     // A tool at rest, or moving along its own edge, sweeps no area: nothing to cut this frame.
-    if (cutting::sweep_problem(sweep).empty()) model_->cut(sweep);
+    if (cutting::sweep_problem(sweep).empty()) {
+      const auto ev = model_->cut(sweep);
+      const double seconds = ev.search_seconds + ev.report.seconds + ev.pieces_seconds;
+      ++blade_stats_.sweeps;
+      blade_stats_.seconds += seconds;
+      blade_stats_.max_seconds = std::max(blade_stats_.max_seconds, seconds);
+    }
   }
   previous_tip_ = probe;
   has_previous_tip_ = true;

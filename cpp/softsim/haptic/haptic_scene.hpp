@@ -63,6 +63,12 @@ class HapticScene {
   hybrid::DhdScene& model() { return *model_; }
   const hybrid::DhdScene& model() const { return *model_; }
   const ContactSurface& surface() const { return surface_; }
+  // The blade's sweeps so far (one per frame the tool moved) and their wall time (s).
+  struct BladeStats {
+    long sweeps = 0;
+    double seconds = 0, max_seconds = 0;
+  };
+  const BladeStats& blade_stats() const { return blade_stats_; }
 
  private:
   void update_contact(const Eigen::Vector3d& probe, const double* u);
@@ -84,7 +90,8 @@ class HapticScene {
   std::vector<FrameEvent> events_;
   Eigen::Vector3d previous_tip_ = Eigen::Vector3d::Zero();
   bool has_previous_tip_ = false;
-  std::size_t cuts_seen_ = 0;  // the model's cut events the surface has followed
+  std::size_t cuts_seen_ = 0;
+  BladeStats blade_stats_;  // the model's cut events the surface has followed
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
 };
 

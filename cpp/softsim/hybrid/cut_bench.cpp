@@ -69,7 +69,7 @@ nlohmann::json cut_bench(const mesh::TetMesh& mesh, const DhdConfig& c, int repe
   std::vector<int> removed;
   for (int r = 0; r < repeats; ++r) {
     DhdScene s(shared, no_cuts, kinds);
-    const auto& ev = s.cut(sweep);
+    const auto ev = s.cut(sweep);
     search = std::min(search, ev.search_seconds);
     update = std::min(update, ev.report.seconds);
     removed = ev.report.elements;

@@ -93,7 +93,7 @@ dynamics::ExplicitResult DhdScene::run(const dynamics::SnapshotFn& snapshot, con
   return solver().run(snapshot, progress);
 }
 
-const DhdScene::CutEvent& DhdScene::cut(const cutting::BladeSweep& sweep) {
+DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
   using Clock = std::chrono::steady_clock;
   const std::string problem = cutting::sweep_problem(sweep);
   if (!problem.empty()) throw InputError("cut: expected " + problem);
@@ -110,6 +110,11 @@ const DhdScene::CutEvent& DhdScene::cut(const cutting::BladeSweep& sweep) {
   const std::vector<int> crossed =
       cutting::elements_crossed(*mesh_, s.displacement(), sweep, [&](int e) { return elements_->removed(e); });
   ev.search_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (crossed.empty()) {  // a sweep through cut space or beside the organ: nothing changes
+    ev.pieces = cut_events_.empty() ? 1 : cut_events_.back().pieces;
+    ev.loose_pieces = cut_events_.empty() ? 0 : cut_events_.back().loose_pieces;
+    return ev;
+  }
   ev.report = s.remove_elements(*mesh_, crossed);
   const auto t1 = Clock::now();
   const cutting::Pieces pieces = cutting::find_pieces(
@@ -118,7 +123,7 @@ const DhdScene::CutEvent& DhdScene::cut(const cutting::BladeSweep& sweep) {
   ev.pieces = pieces.count;
   ev.loose_pieces = static_cast<int>(pieces.loose.size());
   cut_events_.push_back(ev);
-  return cut_events_.back();
+  return ev;
 }
 
 dynamics::StaticResult DhdScene::solve_static() const {

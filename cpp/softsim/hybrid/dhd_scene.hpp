@@ -79,8 +79,10 @@ class DhdScene {
     double pieces_seconds = 0;   // finding the pieces
   };
   // Between steps: the elements the sweep crosses in the current geometry are removed
-  // (ExplicitSolver::remove_elements). The config's "cuts" call it at their times.
-  const CutEvent& cut(const cutting::BladeSweep& sweep);
+  // (ExplicitSolver::remove_elements). The config's "cuts" call it at their times. A sweep
+  // that removes something is kept in cut_events(); the returned event also says what an empty
+  // one cost (its search).
+  CutEvent cut(const cutting::BladeSweep& sweep);
   const std::vector<CutEvent>& cut_events() const { return cut_events_; }
   bool removed(int element) const { return elements_ && elements_->removed(element); }
 
