@@ -185,22 +185,40 @@ def material_line(ctx) -> str:
     """One sentence naming the material law of every dhd_sim run the report read, and whether
     the config chose it or left `material.model` out (the default is the paper's form, which
     differs from CalculiX's by 5–9 % in reaction: the reader must see which one the numbers are)."""
-    seen = []
+    seen = {}
     for view in ctx.all_runs():
         m = view.payload.get("material") if isinstance(view.payload, dict) else None
         if not isinstance(m, dict) or "model" not in m:
             continue
-        entry = (m["model"], bool(m.get("model_defaulted", False)), m.get("E"), m.get("nu"), m.get("density"))
-        if entry not in seen:
-            seen.append(entry)
+        values = seen.setdefault((m["model"], bool(m.get("model_defaulted", False))), ([], [], []))
+        for bucket, key in zip(values, ("E", "nu", "density")):
+            if m.get(key) is not None and m[key] not in bucket:
+                bucket.append(m[key])
     if not seen:
         return ""
+
+    def spread(values, unit):
+        values = sorted(values)
+        if len(values) == 1:
+            return f"{values[0]:g}{unit}"
+        return f"{values[0]:g} to {values[-1]:g}{unit} ({len(values)} values)"
+
     parts = []
-    for model, defaulted, E, nu, rho in seen:
+    for (model, defaulted), (E, nu, rho) in seen.items():
         how = "the default, `material.model` left out" if defaulted else "chosen in the config"
-        parts.append(f"`{model}`, {MODEL_WORDS.get(model, model)}, {how}: E = {E:g} Pa, ν = {nu:g}, "
-                     f"ρ = {rho:g} kg/m³")
+        parts.append(f"`{model}`, {MODEL_WORDS.get(model, model)}, {how}: E = {spread(E, ' Pa')}, "
+                     f"ν = {spread(nu, '')}, ρ = {spread(rho, ' kg/m³')}")
     return "Material of these runs: " + "; ".join(parts) + "."
+
+
+def append_material_line(ctx, path) -> None:
+    """Ends the summary part at `path` with material_line(ctx) (once)."""
+    line = material_line(ctx)
+    if not line or not path.exists():
+        return
+    text = path.read_text().rstrip("\n")
+    if line not in text:
+        path.write_text(text + "\n\n" + line + "\n\n")
 
 
 def write_section(ctx, key: str, text: str, facts: dict = None) -> None:

@@ -17,6 +17,11 @@ computed but inaccurate.
 
 
 def gather_summary(ctx):
+    # The part this experiment wrote ends with the material law of its dhd_sim runs.
+    from pipeline.reports.dhd_common import append_material_line
+    for path in getattr(ctx, "outputs", []):
+        if path.name in PARTS and path.name != "summary_overview.md":
+            append_material_line(ctx, path)
     ctx.out("summary_overview.md").write_text(OVERVIEW)
     gather_parts(ctx, PARTS)
 

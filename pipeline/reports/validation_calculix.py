@@ -13,6 +13,7 @@ params:
 """
 import numpy as np
 
+from pipeline.reports import dhd_common as common
 from pipeline import plots
 from pipeline.reports.dhd_common import displacement_error
 from pipeline.stages.calculix_analytic import uniaxial_linear, uniaxial_neo_hookean_decoupled
@@ -329,3 +330,4 @@ def report(ctx):
         if name:
             lines.append(f"![{name}](validation/{name})\n")
     ctx.out("summary.md").write_text("\n".join(lines))
+    common.append_material_line(ctx, ctx.out("summary.md"))
