@@ -1,0 +1,33 @@
+#pragma once
+// The limits every reader and every run applies before it trusts its input: how deep a JSON
+// document may nest, how large an input file may be, and how much memory a run may plan to use.
+// Each is refused with an InputError (exit 2) naming the file or the config member, never met
+// as a crash, a std::bad_alloc or an endless read. The two sizes can be raised for a large
+// machine through the environment:
+//   SOFTSIM_MAX_INPUT_MB    largest input file read (default 4096 MiB)
+//   SOFTSIM_MEMORY_LIMIT_MB largest memory estimate of a run (default 80 % of physical memory)
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace softsim::io {
+
+class JsonReader;
+
+// Deepest nesting of arrays and objects accepted in any JSON document (configs, artifacts). Ours
+// nest at most 6 deep; the bound keeps every recursive walk of a parsed document (copying,
+// flattening, destroying) far from the stack's end.
+constexpr std::size_t kMaxJsonDepth = 64;
+
+std::uint64_t max_input_bytes();
+std::uint64_t memory_limit_bytes();
+
+// "1.5 GiB": a byte count for messages.
+std::string format_bytes(double bytes);
+
+// Refuses a run whose memory estimate (bytes, computed from the config before anything is
+// allocated) exceeds memory_limit_bytes(), naming the member `key` of `at` that sets the size,
+// the estimate and the limit. `what` says what would take the memory ("the node arrays").
+void require_memory(const JsonReader& at, const std::string& key, double bytes, const std::string& what);
+
+}  // namespace softsim::io
