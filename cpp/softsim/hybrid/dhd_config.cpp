@@ -1,6 +1,8 @@
 #include "softsim/hybrid/dhd_config.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "softsim/dynamics/node_selection.hpp"
@@ -97,6 +99,10 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
     p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
     m->require(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5, "nu", "a Poisson's ratio in (-1, 0.5)");
     p.density = m->get_positive("density", p.density);
+    // A subnormal density (5e-324) or a ratio E/density that overflows gives an infinite wave
+    // speed and a zero critical step (000 eq. 34): refused here, where the member is known.
+    m->require(p.density >= std::numeric_limits<double>::min() && std::isfinite(std::sqrt(p.youngs_modulus / p.density)),
+               "density", "a density whose wave speed sqrt(E / density) is finite");
     m->reject_unknown();
   }
   c.linear_material = c.model == "linear";

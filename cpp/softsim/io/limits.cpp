@@ -47,11 +47,22 @@ std::string format_bytes(double bytes) {
   return out;
 }
 
-void require_memory(const JsonReader& at, const std::string& key, double bytes, const std::string& what) {
+namespace {
+std::string over_limit(double bytes, const std::string& what) {
   const auto limit = static_cast<double>(memory_limit_bytes());
-  if (bytes <= limit) return;
-  at.fail_member(key, "a size whose run fits the memory limit: " + what + " would take about " + format_bytes(bytes) +
-                          ", the limit is " + format_bytes(limit) + " (SOFTSIM_MEMORY_LIMIT_MB)");
+  if (bytes <= limit) return "";
+  return "a size whose run fits the memory limit: " + what + " would take about " + format_bytes(bytes) +
+         ", the limit is " + format_bytes(limit) + " (SOFTSIM_MEMORY_LIMIT_MB)";
+}
+}  // namespace
+
+void require_memory(const JsonReader& at, const std::string& key, double bytes, const std::string& what) {
+  if (const std::string expected = over_limit(bytes, what); !expected.empty()) at.fail_member(key, expected);
+}
+
+void require_memory(const std::string& pointer, double bytes, const std::string& what) {
+  if (const std::string expected = over_limit(bytes, what); !expected.empty())
+    throw ConfigInputError(pointer, "expected " + expected);
 }
 
 }  // namespace softsim::io

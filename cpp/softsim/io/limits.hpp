@@ -29,5 +29,8 @@ std::string format_bytes(double bytes);
 // allocated) exceeds memory_limit_bytes(), naming the member `key` of `at` that sets the size,
 // the estimate and the limit. `what` says what would take the memory ("the node arrays").
 void require_memory(const JsonReader& at, const std::string& key, double bytes, const std::string& what);
+// The same where the estimate needs more than the config (a size read from an input file): a
+// ConfigInputError at the config member `pointer` (run_app names the config file).
+void require_memory(const std::string& pointer, double bytes, const std::string& what);
 
 }  // namespace softsim::io
