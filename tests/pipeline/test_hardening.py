@@ -144,3 +144,18 @@ def test_a_damaged_cached_artifact_is_run_again(pipeline_env):
     r = run_pipeline(pipeline_env, "run", "t")
     assert r.returncode == 0 and "ran cube" in r.stdout, r.stdout
     assert artifact.read_bytes() == whole
+
+
+def test_playback_over_the_memory_limit_names_the_forces(tmp_path):
+    from test_bad_input import Inputs
+    fit = Inputs(tmp_path).fit()
+    cfg = write_json(tmp_path / "play.json", {"fit": str(fit), "forces": [[0, 0, 0.5]] * 1000})
+    out = tmp_path / "o.json"
+    env = dict(os.environ, SOFTSIM_MEMORY_LIMIT_MB="0.1")
+    r = subprocess.run([str(tool("marquardt_fit")), "play", "--config", str(cfg), "--out", str(out)],
+                       capture_output=True, text=True, env=env, timeout=60)
+    assert r.returncode == 2
+    assert f"{cfg}: /forces: expected a size whose run fits the memory limit" in one_error_line(r)
+    assert not out.exists()
+    r = run_tool("marquardt_fit", "play", "--config", cfg, "--out", out)
+    assert r.returncode == 0, r.stderr
