@@ -7,6 +7,7 @@
 
 #include "softsim/dynamics/node_selection.hpp"
 #include "softsim/io/artifact.hpp"
+#include "softsim/io/limits.hpp"
 #include "softsim/io/result_fields.hpp"
 
 namespace softsim::hybrid {
@@ -257,7 +258,7 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
   b->reject_unknown();
 }
 
-void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
+void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
   auto s = cfg.optional("solver");
   if (!s) return;
   c.static_solver = s->get_choice("kind", {"explicit", "static"}, "explicit") == "static";
@@ -272,6 +273,9 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   ExplicitConfig& e = c.explicit_solver;
   e.steps = s->get_int32("steps", e.steps);
   s->require(e.steps >= 0, "steps", "a non-negative step count");
+  // One explicit step updates every element once, and costs about 200 element updates more
+  // whatever the mesh (io/limits.hpp: the work limit).
+  io::require_work(*s, "steps", static_cast<double>(e.steps) * (static_cast<double>(mesh.tets.size()) + 200.0));
   if (s->has("dt")) e.dt = s->get_positive("dt");
   e.safety_factor = s->get_positive("safety_factor", e.safety_factor);
   s->require(e.safety_factor <= 1.0, "safety_factor", "a factor in (0, 1]");
@@ -287,6 +291,9 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   dynamics::StaticOptions& st = c.static_options;
   st.increments = s->get_int32("increments", st.increments);
   s->require(st.increments >= 1, "increments", "a positive increment count");
+  // An increment is Newton iterations, each an assembly and a sparse factorisation: counted as
+  // 100 explicit steps.
+  io::require_work(*s, "increments", 100.0 * static_cast<double>(st.increments) * (static_cast<double>(mesh.tets.size()) + 200.0));
   st.max_iterations = s->get_int32("max_iterations", st.max_iterations);
   s->require(st.max_iterations >= 1, "max_iterations", "a positive iteration count");
   st.tolerance = s->get_positive("tolerance", st.tolerance);
@@ -361,7 +368,7 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   }
   read_partition(cfg, mesh, c);
   read_boundary(cfg, mesh, c);
-  read_solver(cfg, c);
+  read_solver(cfg, mesh, c);
   read_output(cfg, mesh, c);
   c.threads = cfg.get_int32("threads", 1);
   cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");

@@ -1,5 +1,6 @@
 #include "softsim/io/limits.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <unistd.h>
@@ -33,6 +34,25 @@ std::uint64_t memory_limit_bytes() {
   const std::uint64_t physical =
       pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : (16ull << 30);
   return mib_from_env("SOFTSIM_MEMORY_LIMIT_MB", physical / 10 * 8);
+}
+
+double max_element_updates() {
+  const char* text = std::getenv("SOFTSIM_MAX_ELEMENT_UPDATES");
+  if (!text || !*text) return 1e11;
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !(v > 0) || !std::isfinite(v))
+    throw InputError(std::string("environment: SOFTSIM_MAX_ELEMENT_UPDATES: expected a positive number, got \"") + text + "\"");
+  return v;
+}
+
+void require_work(const JsonReader& at, const std::string& key, double element_updates) {
+  const double limit = max_element_updates();
+  if (element_updates <= limit) return;
+  char text[160];
+  std::snprintf(text, sizeof text, "a run of at most %.3g element updates (SOFTSIM_MAX_ELEMENT_UPDATES; this one needs %.3g)",
+                limit, element_updates);
+  at.fail_member(key, text);
 }
 
 std::string format_bytes(double bytes) {

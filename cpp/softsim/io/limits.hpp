@@ -6,6 +6,9 @@
 // machine through the environment:
 //   SOFTSIM_MAX_INPUT_MB    largest input file read (default 4096 MiB)
 //   SOFTSIM_MEMORY_LIMIT_MB largest memory estimate of a run (default 80 % of physical memory)
+//   SOFTSIM_MAX_ELEMENT_UPDATES  most element updates a simulation may ask for (default 1e11:
+//                           about half an hour of one core on the TLED kernel), so that a step
+//                           count of 2^31 is refused rather than run for hours
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -21,6 +24,11 @@ constexpr std::size_t kMaxJsonDepth = 64;
 
 std::uint64_t max_input_bytes();
 std::uint64_t memory_limit_bytes();
+double max_element_updates();
+
+// Refuses a run whose work (element updates: steps x elements) exceeds max_element_updates(),
+// naming the member `key` of `at` that sets it.
+void require_work(const JsonReader& at, const std::string& key, double element_updates);
 
 // "1.5 GiB": a byte count for messages.
 std::string format_bytes(double bytes);
