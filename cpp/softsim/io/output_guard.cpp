@@ -68,4 +68,19 @@ void reset_output_guard() {
   r.written.clear();
 }
 
+ScopedInputGuard::ScopedInputGuard(std::vector<std::string> paths) : paths_(std::move(paths)) {
+  for (const std::string& p : paths_) guard_input(p);
+}
+
+ScopedInputGuard::~ScopedInputGuard() {
+  Registry& r = registry();
+  const std::lock_guard<std::mutex> lock(r.mutex);
+  for (const std::string& p : paths_)
+    for (auto it = r.inputs.begin(); it != r.inputs.end(); ++it)
+      if (*it == p) {
+        r.inputs.erase(it);
+        break;
+      }
+}
+
 }  // namespace softsim::io

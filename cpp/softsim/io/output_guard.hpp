@@ -21,4 +21,17 @@ void record_written(const std::string& path);
 std::vector<std::string> written_files();
 void reset_output_guard();
 
+// Guards `paths` as inputs for its lifetime (a library call such as the Python API's, which has
+// no run_app around it).
+class ScopedInputGuard {
+ public:
+  explicit ScopedInputGuard(std::vector<std::string> paths);
+  ~ScopedInputGuard();
+  ScopedInputGuard(const ScopedInputGuard&) = delete;
+  ScopedInputGuard& operator=(const ScopedInputGuard&) = delete;
+
+ private:
+  std::vector<std::string> paths_;
+};
+
 }  // namespace softsim::io
