@@ -33,17 +33,33 @@ def _check_finite(value, where=""):
             _check_finite(v, f"{where}/{i}")
 
 
-def write_json_atomic(path, document) -> None:
+def write_atomic(path, write) -> None:
+    """Calls write(tmp) on a temporary sibling of `path` and renames it into place: a reader sees
+    the old file or the whole new one, never a torn one. A failed write (a full disk) removes the
+    temporary and raises the OSError; `path` is left as it was."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     # The thread's id as well as the PID: two threads of one process may write the same file at
     # once (one key in two overlapping experiments); the name still ends in `.tmp.PID`, which is
     # what the stale-file cleaner reads.
     tmp = path.with_name(f"{path.name}.{threading.get_ident()}.tmp.{os.getpid()}")
-    with open(tmp, "w") as f:
-        json.dump(document, f, allow_nan=False)
-        f.write("\n")
-    os.replace(tmp, path)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            tmp.unlink()
+        except FileNotFoundError:
+            pass
+        raise
+
+
+def write_json_atomic(path, document) -> None:
+    def write(tmp):
+        with open(tmp, "w") as f:
+            json.dump(document, f, allow_nan=False)
+            f.write("\n")
+    write_atomic(path, write)
 
 
 def write_artifact(out_path, schema: str, version: int, tool: str, config: dict, payload: dict,

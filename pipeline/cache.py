@@ -114,3 +114,42 @@ def clean_stale(cache: Path = None) -> Tuple[int, int]:
 
 def describe(count: int, size: int) -> str:
     return f"{count} stale temporary file{'s' if count != 1 else ''} of dead writers ({size / 1e6:.1f} MB)"
+
+
+# ----------------------------------------------------------------------------- verification
+# A cached artifact is used only if it is the file its run wrote: the run records the artifact's
+# sha256 (cache/hashes/<tool>/<artifact>.sha256, apart from the artifacts), and a cache hit checks it. A truncated or edited artifact
+# is run again instead of being reported as cached and failing every run downstream of it.
+
+HASHES = "hashes"
+
+
+def _hash_record(artifact: Path) -> Path:
+    return artifact.parent.parent.parent / HASHES / artifact.parent.name / (artifact.name + ".sha256")
+
+
+def record_artifact_hash(artifact) -> None:
+    from pipeline.artifacts import write_atomic
+    from pipeline.hashing import file_hash
+    artifact = Path(artifact)
+    digest = file_hash(artifact)
+    write_atomic(_hash_record(artifact), lambda tmp: tmp.write_text(digest + "\n"))
+
+
+def cached_artifact_intact(artifact) -> bool:
+    """Whether a cached artifact matches its recorded hash. An artifact cached before hashes were
+    recorded is accepted when it parses as an artifact, and its hash recorded then."""
+    from pipeline import json_limits
+    from pipeline.hashing import file_hash
+    artifact = Path(artifact)
+    record = _hash_record(artifact)
+    try:
+        if record.is_file():
+            return record.read_text().strip() == file_hash(artifact)
+        doc = json_limits.loads(artifact.read_text(), str(artifact))
+        if not (isinstance(doc, dict) and {"schema", "provenance", "payload"} <= doc.keys()):
+            return False
+    except (OSError, ValueError):
+        return False
+    record_artifact_hash(artifact)
+    return True

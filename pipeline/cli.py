@@ -54,6 +54,18 @@ def _code_of(selected) -> dict:
     return code
 
 
+def _announce_sweeps(exp, run_ids) -> None:
+    """Says how many runs the selected sweeps make before any starts (the limit is
+    experiment.max_sweep_runs)."""
+    chosen = set(run_ids)
+    swept = [(stage, sum(1 for r in ids if r in chosen)) for stage, ids in exp.stage_runs.items()
+             if exp.runs[ids[0]].index is not None]
+    swept = [(stage, n) for stage, n in swept if n]
+    if swept:
+        print(f"pipeline: {exp.name}: {len(run_ids)} runs; sweeps: "
+              + ", ".join(f"{stage} {n}" for stage, n in swept), flush=True)
+
+
 def cmd_run(args) -> int:
     from pipeline import cache, procs
     from pipeline.executors import make_executor
@@ -69,6 +81,8 @@ def cmd_run(args) -> int:
     # refreshed too, once it has run (a second pass, so none of them reads it half-way).
     followers = [(other, experiment_mod.refresh(other, stage))
                  for other, stage in experiment_mod.sharing(experiments[0], args.stage)] if args.stage else []
+    for exp, run_ids in selected:
+        _announce_sweeps(exp, run_ids)
     # A stopped pipeline stops what it started (its tools, a local cluster's workers).
     procs.stop_with_children(on_stop=cache.clean_stale)
     started = time.time()
@@ -200,3 +214,6 @@ def main(argv) -> int:
     except ExperimentError as e:
         print(f"pipeline: error: {e}", file=sys.stderr)
         return 2
+    except OSError as e:  # a full disk while writing reports or the manifest: one line, not a traceback
+        print(f"pipeline: error: {e.filename or ''}{': ' if e.filename else ''}{e.strerror or e}", file=sys.stderr)
+        return 1

@@ -11,11 +11,14 @@ for what several stages or experiments must agree on.
 import copy
 import itertools
 import json
+import math
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Optional
 
+from pipeline import json_limits
 from pipeline.errors import ExperimentError
 from pipeline.paths import EXPERIMENTS
 
@@ -119,6 +122,20 @@ def substitute_refs(value, resolve):
     return value
 
 
+# The most runs one stage's sweep may expand into: a sweep is a product of lists, so a few long
+# lists make millions of runs before anything checks them. Raise it through the environment.
+DEFAULT_MAX_SWEEP_RUNS = 10000
+
+
+def max_sweep_runs() -> int:
+    text = os.environ.get("PIPELINE_MAX_SWEEP_RUNS", "")
+    if not text:
+        return DEFAULT_MAX_SWEEP_RUNS
+    if not text.isdigit() or int(text) < 1:
+        raise ExperimentError(f"environment: PIPELINE_MAX_SWEEP_RUNS: expected a positive integer, got {text!r}")
+    return int(text)
+
+
 def list_experiments() -> List[str]:
     return sorted(p.stem for p in EXPERIMENTS.glob("*.json"))
 
@@ -128,7 +145,9 @@ def _read_doc(path: Path) -> dict:
         known = ", ".join(list_experiments())
         raise ExperimentError(f"{path.name}: no such experiment (known: {known})")
     try:
-        doc = json.loads(path.read_text())
+        doc = json_limits.loads(path.read_text(), str(path))
+    except json_limits.JsonLimitError as e:
+        raise ExperimentError(str(e)) from None
     except json.JSONDecodeError as e:
         raise ExperimentError(f"{path}: invalid JSON: {e}") from None
     if not isinstance(doc, dict):
@@ -258,6 +277,10 @@ def load(name: str) -> Experiment:
         exclusive = spec.get("exclusive", False)
         if not isinstance(exclusive, bool):
             _fail(path, f"{ptr}/exclusive", "expected true or false")
+        count = math.prod(len(v) for v in sweep.values())
+        if count > max_sweep_runs():
+            _fail(path, f"{ptr}/sweep", f"expected a sweep of at most {max_sweep_runs()} runs "
+                  f"(PIPELINE_MAX_SWEEP_RUNS), got {' x '.join(str(len(v)) for v in sweep.values())} = {count}")
         combos = [dict(zip(sweep.keys(), values)) for values in itertools.product(*sweep.values())] \
             if sweep else [None]
         ids = []

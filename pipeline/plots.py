@@ -12,9 +12,16 @@ def figure(width=6.4, height=4.2):
 
 
 def save(fig, path) -> None:
+    """Saves atomically (pipeline.artifacts.write_atomic): a full disk leaves the old plot or
+    none, never a truncated PNG."""
+    from pathlib import Path
+    from pipeline.artifacts import write_atomic
     fig.tight_layout()
-    fig.savefig(path, metadata={"Software": None})
-    plt.close(fig)
+    try:
+        write_atomic(path, lambda tmp: fig.savefig(tmp, format=Path(path).suffix.lstrip(".") or None,
+                                                   metadata={"Software": None}))
+    finally:
+        plt.close(fig)
 
 
 def plain_log_ticks(axis, subs=(1.0, 2.0, 5.0)) -> None:

@@ -13,6 +13,7 @@ from typing import Dict, List, Optional
 
 from pipeline import experiment as experiment_mod
 from pipeline.artifacts import git_commit, write_json_atomic
+from pipeline.cache import cached_artifact_intact, record_artifact_hash
 from pipeline.context import ReportContext, RunView
 from pipeline.errors import RunFailed
 from pipeline.execute import RunSpec
@@ -172,7 +173,9 @@ class Runner:
             stamp = STAMPS / f"{exp.name}.{run.stage}.json"
             if not forced and stamp.exists():
                 old = json.loads(stamp.read_text())
-                if old.get("key") == key and all((ROOT / p).exists() for p in old.get("outputs", [])):
+                if old.get("key") == key and all((ROOT / p).exists() for p in old.get("outputs", [])) \
+                        and all((ROOT / p).is_file() and file_hash(ROOT / p) == h
+                                for p, h in old.get("sha256", {}).items()):
                     return Outcome(run, "cached", key, stamp, time.time() - start)
             outputs = self._run_report(exp, run, key)
             write_json_atomic(stamp, {"key": key, "outputs": [rel(p) for p in outputs],
@@ -180,7 +183,7 @@ class Runner:
             return Outcome(run, "ran", key, stamp, time.time() - start)
         artifact = ARTIFACTS / run.target.split(".")[-1] / f"{key[:32]}.json"
         artifact.parent.mkdir(parents=True, exist_ok=True)
-        if artifact.exists() and not forced:
+        if artifact.exists() and not forced and cached_artifact_intact(artifact):
             return Outcome(run, "cached", key, artifact, time.time() - start)
         config = self._resolved_config(exp, run)
         config_path = None
@@ -194,6 +197,7 @@ class Runner:
         result = self.executor.execute(spec, run.exclusive)
         if not result.ok:
             raise RunFailed(run.id, result.code, result.message)
+        record_artifact_hash(artifact)
         outcome = Outcome(run, "ran", key, artifact, time.time() - start)
         outcome.exec_seconds, outcome.where = result.seconds, f"{result.host}:{result.pid}"
         return outcome

@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
     const mesh::TetMesh mesh = io::read_mesh_artifact(mesh_path);
     const hybrid::DhdConfig config = hybrid::read_dhd_config(cfg, mesh);
     if (!config.strain_reference.empty()) ctx.input(config.strain_reference);
+    ctx.output(config.output.vtu, "/output/vtu");
 
     if (ctx.flag("--cut-bench")) {
       ctx.write(hybrid::kCutBenchSchema, hybrid::kCutBenchSchemaVersion,

@@ -24,10 +24,13 @@ int main(int argc, char** argv) {
     io::MesherConfig config = io::read_mesher_config(ctx.config());
     config.file.surface_mesher = meshing::volume_from_surface;  // .obj/.stl through the Gmsh API
     if (config.from_file) ctx.input(config.path);
+    ctx.output(config.vtu, "/vtu");
     const mesh::TetMesh m = io::build_mesh(config);
     const mesh::QualityReport q = mesh::quality_report(m, config.sliver_threshold_deg);
+    nlohmann::json payload = io::mesher_payload(m, q, config.source);
+    io::check_built_mesh(payload, ctx.config_path);
     if (!config.vtu.empty()) io::write_mesher_vtu(config.vtu, m, config.vtu_format);
-    ctx.write(io::kMeshSchema, io::kMeshSchemaVersion, io::mesher_payload(m, q, config.source));
+    ctx.write(io::kMeshSchema, io::kMeshSchemaVersion, std::move(payload));
     std::cerr << "mesher: " << q.nodes << " nodes, " << q.tets << " tets, " << q.boundary_triangles
               << " boundary triangles, " << q.slivers.size() << " slivers\n";
   });

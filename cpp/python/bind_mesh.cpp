@@ -12,6 +12,7 @@
 #include "softsim/io/artifact.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/mesher_config.hpp"
+#include "softsim/io/output_guard.hpp"
 #include "softsim/io/sha256.hpp"
 #include "softsim/meshing/gmsh_volume.hpp"
 
@@ -49,8 +50,13 @@ std::shared_ptr<PyMesh> from_mesher_config(const Config& config) {
     provenance.tool = "mesher";  // the artifact is mesher's, byte for byte
     provenance.config = config.json();
     if (mc.from_file) provenance.input_sha256[mc.path] = io::sha256_file(mc.path);
+    // mesher's checks (app.cpp, apps/mesher.cpp): the VTU is no input, the mesh passes the readers.
+    const io::ScopedInputGuard inputs({config.source(), mc.from_file ? mc.path : std::string()});
+    if (!mc.vtu.empty()) io::check_output_path(mc.vtu, config.source() + ": /vtu");
     auto out = std::make_shared<PyMesh>();
     out->mesh = io::build_mesh(mc);
+    io::check_built_mesh(io::mesher_payload(out->mesh, mesh::quality_report(out->mesh, mc.sliver_threshold_deg), mc.source),
+                         config.source());
     if (!mc.vtu.empty()) io::write_mesher_vtu(mc.vtu, out->mesh, mc.vtu_format);
     out->sliver_threshold_deg = mc.sliver_threshold_deg;
     out->source = mc.source;

@@ -13,6 +13,7 @@
 #include "py_arrays.hpp"
 #include "py_mesh.hpp"
 #include "softsim/hybrid/dhd_vtu.hpp"
+#include "softsim/io/output_guard.hpp"
 #include "softsim/io/artifact.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 
@@ -37,6 +38,9 @@ Outcome run(const std::shared_ptr<PyMesh>& given, Config& config, bool static_on
     if (!given) loaded = io::read_mesh_artifact(hybrid::read_mesh_path(cfg));
     const mesh::TetMesh& mesh = given ? given->mesh : loaded;
     const hybrid::DhdConfig c = hybrid::read_dhd_config(cfg, mesh);
+    // dhd_sim's output rules (app.cpp): the VTU is none of the run's inputs.
+    const io::ScopedInputGuard inputs({config.source(), given ? std::string() : hybrid::read_mesh_path(cfg)});
+    if (!c.output.vtu.empty()) io::check_output_path(c.output.vtu, config.source() + ": /output/vtu");
     if (static_only && !c.static_solver)
       cfg.at("solver").at("kind").fail("\"static\" (solve_static solves the static equilibrium; run_dhd runs explicit dynamics)");
     Outcome out{hybrid::run_dhd_writing_vtu(mesh, c), nullptr};

@@ -32,7 +32,9 @@ def report(ctx):
             f"[exceptions](bad_input_failures.md)): truncated and empty JSON, NaN and out-of-range numbers, missing, "
             "unknown and mistyped fields, ν ≥ 0.5, E ≤ 0, zero or negative sizes and volumes, repeated or "
             "out-of-range node indices, empty node sets, loads on fixed nodes, Δt above the limit, files that are "
-            "not meshes.", "",
+            "not meshes, configs and artifacts nested tens of thousands deep, devices given as inputs "
+            "(/dev/zero), sizes whose run would exceed the memory limit, meshes whose tetrahedra round to zero "
+            "volume, integers beyond their 32-bit field, outputs that name an input.", "",
             f"In plain words: {total - len(failing)} of {total} are refused the way they should be — exit 2, one "
             "line naming the file, the JSON pointer and what was expected, no output file."]
     if failing:

@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <new>
 
 #include "softsim/io/errors.hpp"
 #include "softsim/io/git_commit.hpp"
+#include "softsim/io/output_guard.hpp"
 #include "softsim/io/sha256.hpp"
 #include "softsim/version.hpp"
 
@@ -13,6 +15,7 @@ namespace softsim::app {
 
 std::string AppContext::input(const std::string& path) {
   provenance.input_sha256[path] = io::sha256_file(path);
+  io::guard_input(path);
   return path;
 }
 
@@ -42,33 +45,67 @@ bool same_file(const std::string& a, const std::string& b) {
   return std::filesystem::equivalent(a, b, ec) && !ec;
 }
 
-// A failed run removes its --out file, so that no stale artifact is left behind. An --out that
-// names a directory, the config or an input named in the config is refused instead (the failure
-// would otherwise delete the user's file, and success overwrite it): the conflict, or "".
-std::string out_path_conflict(const AppContext& ctx) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(ctx.out_path, ec))
-    return "command line: --out " + ctx.out_path + ": expected a file name, got a directory";
-  if (!ctx.config_path.empty() && same_file(ctx.config_path, ctx.out_path))
-    return "command line: --out " + ctx.out_path + ": expected a file other than the --config file";
+// Whether two outputs, either of which may not exist yet, would be the same file.
+bool same_output(const std::string& a, const std::string& b) {
+  if (same_file(a, b)) return true;
+  std::error_code ea, eb;
+  const auto ca = std::filesystem::weakly_canonical(a, ea), cb = std::filesystem::weakly_canonical(b, eb);
+  return !ea && !eb && ca == cb;
+}
+
+// Why `path`, an output of this run named by `label` (the command line's "--out PATH", or the
+// config file and the member's JSON pointer), may not be written, or "": a directory or a special file (a device
+// such as /dev/null would be replaced by a regular file), the config, or a file named by
+// another string member of the config (an input: the failure would delete the user's file, and
+// success overwrite it). `own` is the member naming the output itself.
+std::string output_conflict(const AppContext& ctx, const std::string& path, const std::string& label,
+                            const std::string& own) {
+  if (!ctx.config_path.empty() && same_file(ctx.config_path, path))
+    return label + ": expected a file other than the --config file";
+  try {
+    io::check_output_path(path, label);
+  } catch (const InputError& e) {
+    return e.what();
+  }
   if (!ctx.config_json.is_object()) return "";
   const nlohmann::json members = ctx.config_json.flatten();  // keys are JSON pointers
   for (auto it = members.begin(); it != members.end(); ++it)
-    if (it->is_string() && same_file(it->get<std::string>(), ctx.out_path))
-      return ctx.config_path + ": " + it.key() + ": expected a file other than the --out file " + ctx.out_path;
+    if (it.key() != own && it->is_string() && same_file(it->get<std::string>(), path))
+      return ctx.config_path + ": " + it.key() + ": expected a file other than the " +
+             (own.empty() ? std::string("--out") : own) + " file " + path;
   return "";
 }
 
+std::string out_path_conflict(const AppContext& ctx) {
+  return output_conflict(ctx, ctx.out_path, "command line: --out " + ctx.out_path, "");
+}
+
+// A failed run removes every file it put in place (VTU snapshots written before the failure,
+// say), and a regular file at --out, so that no stale artifact of an earlier run is taken for
+// this run's. Nothing else: not an --out that was refused, not a device, not an input.
 void remove_failed_output(const AppContext& ctx) {
-  if (!ctx.out_path.empty() && out_path_conflict(ctx).empty()) std::remove(ctx.out_path.c_str());
+  for (const std::string& written : io::written_files()) std::remove(written.c_str());
+  std::error_code ec;
+  if (!ctx.out_path.empty() && std::filesystem::is_regular_file(ctx.out_path, ec) && out_path_conflict(ctx).empty())
+    std::remove(ctx.out_path.c_str());
 }
 
 }  // namespace
+
+std::string AppContext::output(const std::string& path, const std::string& pointer) const {
+  if (path.empty()) return path;
+  if (same_output(path, out_path))
+    throw InputError(config_path + ": " + pointer + ": expected a file other than the --out file " + out_path);
+  if (const std::string conflict = output_conflict(*this, path, config_path + ": " + pointer, pointer); !conflict.empty())
+    throw InputError(conflict);
+  return path;
+}
 
 int run_app(int argc, char** argv, const AppInfo& info,
             const std::function<void(AppContext&)>& body) {
   AppContext ctx;
   ctx.provenance.tool = info.name;
+  io::reset_output_guard();
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -100,6 +137,7 @@ int run_app(int argc, char** argv, const AppInfo& info,
     if (info.needs_out && ctx.out_path.empty()) throw InputError("command line: --out FILE is required");
     if (!ctx.config_path.empty()) {
       ctx.config_json = io::JsonReader::parse_file(ctx.config_path);
+      io::guard_input(ctx.config_path);
       ctx.config_ = std::make_unique<io::JsonReader>(ctx.config_json, ctx.config_path);
       if (!ctx.config_json.is_object()) ctx.config_->fail("a JSON object");
       ctx.provenance.config = ctx.config_json;
@@ -123,8 +161,14 @@ int run_app(int argc, char** argv, const AppInfo& info,
     std::cerr << info.name << ": numerical failure: " << e.what() << "\n";
     remove_failed_output(ctx);
     return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << info.name << ": internal error: out of memory (the run's memory estimate passed the limit: "
+              << "lower SOFTSIM_MEMORY_LIMIT_MB to what this machine can give)\n";
+    remove_failed_output(ctx);
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << info.name << ": internal error: " << e.what() << "\n";
+    remove_failed_output(ctx);
     return 1;
   }
 }

@@ -42,6 +42,10 @@ class AppContext {
   bool flag(const std::string& f) const { return flags.count(f) > 0; }
   // Records an input file's sha256 in the provenance and returns the path.
   std::string input(const std::string& path);
+  // Checks an output file other than --out, named by config member `pointer` (a VTU file),
+  // before anything is computed: the rules of --out (a regular file or a new name, not the
+  // config, not a file another member names, not --out itself). Returns `path` ("" passes).
+  std::string output(const std::string& path, const std::string& pointer) const;
   // Writes the artifact at --out with this run's provenance.
   void write(const std::string& schema, int version, nlohmann::json payload);
 

@@ -70,7 +70,7 @@ StepChoice choose_time_step(const CriticalStep& critical, std::optional<double> 
                             double safety_factor, bool force) {
   StepChoice s;
   if (requested) {
-    if (!(*requested > 0)) throw InputError("solver: the time step must be positive");
+    if (!(*requested > 0)) throw ConfigInputError("/solver/dt", "expected a positive time step");
     s.dt = *requested;
     if (s.dt > critical.dt) {
       if (!force) {

@@ -6,6 +6,7 @@
 #include "softsim/fit/playback.hpp"
 #include "softsim/fit/report_json.hpp"
 #include "softsim/fit/superposition.hpp"
+#include "softsim/io/limits.hpp"
 
 namespace softsim::fit {
 
@@ -52,6 +53,10 @@ nlohmann::json surface_playback_payload(const std::string& fit_path, const FitMo
   const SurfacePlayer player(model);
   const int n = player.node_count();
   const int l = model.loaded_node;
+  // Each case holds its surface displacements (and the reference's error) as JSON values and
+  // then as text: about 150 bytes a node and component set, checked before the first case.
+  const double case_bytes = (exact ? 2.0 : 1.0) * 150.0 * n + 1000.0;
+  io::require_memory("/forces", case_bytes * static_cast<double>(forces.size()), "the played-back surfaces");
   Eigen::VectorXd u(3 * n), s(3 * n);
   nlohmann::json cases = nlohmann::json::array();
   for (const Eigen::Vector3d& f : forces) {

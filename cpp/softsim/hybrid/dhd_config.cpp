@@ -1,10 +1,13 @@
 #include "softsim/hybrid/dhd_config.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "softsim/dynamics/node_selection.hpp"
 #include "softsim/io/artifact.hpp"
+#include "softsim/io/limits.hpp"
 #include "softsim/io/result_fields.hpp"
 
 namespace softsim::hybrid {
@@ -97,6 +100,10 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
     p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
     m->require(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5, "nu", "a Poisson's ratio in (-1, 0.5)");
     p.density = m->get_positive("density", p.density);
+    // A subnormal density (5e-324) or a ratio E/density that overflows gives an infinite wave
+    // speed and a zero critical step (000 eq. 34): refused here, where the member is known.
+    m->require(p.density >= std::numeric_limits<double>::min() && std::isfinite(std::sqrt(p.youngs_modulus / p.density)),
+               "density", "a density whose wave speed sqrt(E / density) is finite");
     m->reject_unknown();
   }
   c.linear_material = c.model == "linear";
@@ -262,7 +269,7 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
   b->reject_unknown();
 }
 
-void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
+void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
   auto s = cfg.optional("solver");
   if (!s) return;
   c.static_solver = s->get_choice("kind", {"explicit", "static"}, "explicit") == "static";
@@ -277,6 +284,9 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   ExplicitConfig& e = c.explicit_solver;
   e.steps = s->get_int32("steps", e.steps);
   s->require(e.steps >= 0, "steps", "a non-negative step count");
+  // One explicit step updates every element once, and costs about 200 element updates more
+  // whatever the mesh (io/limits.hpp: the work limit).
+  io::require_work(*s, "steps", static_cast<double>(e.steps) * (static_cast<double>(mesh.tets.size()) + 200.0));
   if (s->has("dt")) e.dt = s->get_positive("dt");
   e.safety_factor = s->get_positive("safety_factor", e.safety_factor);
   s->require(e.safety_factor <= 1.0, "safety_factor", "a factor in (0, 1]");
@@ -292,6 +302,9 @@ void read_solver(const io::JsonReader& cfg, DhdConfig& c) {
   dynamics::StaticOptions& st = c.static_options;
   st.increments = s->get_int32("increments", st.increments);
   s->require(st.increments >= 1, "increments", "a positive increment count");
+  // An increment is Newton iterations, each an assembly and a sparse factorisation: counted as
+  // 100 explicit steps.
+  io::require_work(*s, "increments", 100.0 * static_cast<double>(st.increments) * (static_cast<double>(mesh.tets.size()) + 200.0));
   st.max_iterations = s->get_int32("max_iterations", st.max_iterations);
   s->require(st.max_iterations >= 1, "max_iterations", "a positive iteration count");
   st.tolerance = s->get_positive("tolerance", st.tolerance);
@@ -375,7 +388,7 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   }
   read_partition(cfg, mesh, c);
   read_boundary(cfg, mesh, c);
-  read_solver(cfg, c);
+  read_solver(cfg, mesh, c);
   read_output(cfg, mesh, c);
   c.threads = cfg.get_int32("threads", 1);
   cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");

@@ -81,14 +81,7 @@ Artifact Artifact::read(const std::string& path, const std::string& schema_name,
   a.path_ = path;
   const std::string text = read_text_file(path);
   a.sha256_ = sha256_hex(text);
-  try {
-    a.doc_ = std::make_shared<nlohmann::json>(nlohmann::json::parse(text));
-  } catch (const nlohmann::json::exception& e) {  // syntax errors and out-of-range numbers
-    std::string msg = e.what();
-    const auto pos = msg.find("] ");
-    if (pos != std::string::npos) msg = msg.substr(pos + 2);
-    throw InputError(path + ": invalid JSON: " + msg);
-  }
+  a.doc_ = std::make_shared<nlohmann::json>(JsonReader::parse_text(text, path));
   const JsonReader root(*a.doc_, path);
   if (!a.doc_->is_object()) root.fail("an artifact object with schema, provenance and payload");
   const JsonReader schema = root.at("schema");

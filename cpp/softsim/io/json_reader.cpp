@@ -1,27 +1,38 @@
 #include "softsim/io/json_reader.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <set>
-#include <sstream>
+
+#include "softsim/io/atomic_file.hpp"
+#include "softsim/io/limits.hpp"
 
 namespace softsim::io {
 
 namespace {
+// RFC 6901 escaping, plus control characters written as \u00XX: a key holding a NUL or a
+// newline would otherwise cut the one-line error message short or split it.
 std::string escape_pointer_token(const std::string& key) {
   std::string out;
   for (char c : key) {
     if (c == '~') out += "~0";
     else if (c == '/') out += "~1";
-    else out += c;
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char code[8];
+      std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += code;
+    } else out += c;
   }
   return out;
 }
 // Refuses a key repeated in one object while the document is parsed: the parser would keep the
-// last value only, so the first setting would be silently ignored. Tracks the JSON pointer of
-// the value being parsed (object keys, and array indices counted as elements end).
+// last value only, so the first setting would be silently ignored. Refuses nesting deeper than
+// kMaxJsonDepth before the deeper level is built: every later walk of the document (copying
+// it into the provenance, flattening, destroying) recurses once per level, and a document
+// nested tens of thousands deep would overflow the stack. Tracks the JSON pointer of the value
+// being parsed (object keys, and array indices counted as elements end).
 class DuplicateKeyCheck {
  public:
   explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
@@ -29,8 +40,13 @@ class DuplicateKeyCheck {
   bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using Event = nlohmann::json::parse_event_t;
     switch (event) {
-      case Event::object_start: open_.push_back({true, {}, "", 0}); break;
-      case Event::array_start: open_.push_back({false, {}, "", 0}); break;
+      case Event::object_start:
+      case Event::array_start:
+        if (open_.size() >= kMaxJsonDepth)
+          throw InputError(file_ + ": " + pointer() + ": expected arrays and objects nested at most " +
+                           std::to_string(kMaxJsonDepth) + " deep, got deeper");
+        open_.push_back({event == Event::object_start, {}, "", 0});
+        break;
       case Event::key: {
         Level& object = open_.back();
         object.key = parsed.get<std::string>();
@@ -99,11 +115,10 @@ JsonReader::JsonReader(const nlohmann::json& value, std::string file, std::strin
 nlohmann::json JsonReader::parse_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": expected a JSON file, got a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return parse_text(read_text_file(path), path);
+}
+
+nlohmann::json JsonReader::parse_text(const std::string& text, const std::string& path) {
   if (text.empty()) throw InputError(path + ": expected a JSON document, got an empty file");
   try {
     // Comments are not JSON; NaN/Infinity literals are rejected by the parser itself.
@@ -211,6 +226,10 @@ double JsonReader::as_double() const {
 }
 
 std::int64_t JsonReader::as_int() const {
+  // An unsigned value above INT64_MAX would wrap to a negative one.
+  if (value_->is_number_unsigned() &&
+      value_->get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+    fail("an integer within the 64-bit range");
   if (value_->is_number_integer()) return value_->get<std::int64_t>();
   if (value_->is_number_float()) {
     const double v = value_->get<double>();
@@ -248,12 +267,14 @@ std::int64_t JsonReader::get_int(const std::string& key, std::int64_t fallback) 
   return has(key) ? at(key).as_int() : fallback;
 }
 
-int JsonReader::get_int32(const std::string& key) const {
-  const std::int64_t v = get_int(key);
+int JsonReader::as_int32() const {
+  const std::int64_t v = as_int();
   if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-    at(key).fail("an integer within the 32-bit range");
+    fail("an integer within the 32-bit range");
   return static_cast<int>(v);
 }
+
+int JsonReader::get_int32(const std::string& key) const { return at(key).as_int32(); }
 
 int JsonReader::get_int32(const std::string& key, int fallback) const {
   return has(key) ? get_int32(key) : fallback;

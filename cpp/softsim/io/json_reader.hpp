@@ -22,8 +22,12 @@ class JsonReader {
  public:
   JsonReader(const nlohmann::json& value, std::string file, std::string pointer = "");
 
-  // Parses a whole file; a missing file or a syntax error is an InputError naming the file.
+  // Parses a whole file; a missing file, one that is not a regular file or is too large
+  // (io/limits.hpp), a syntax error, a key given twice in one object and nesting deeper than
+  // kMaxJsonDepth are InputErrors naming the file (and the JSON pointer where there is one).
   static nlohmann::json parse_file(const std::string& path);
+  // The same checks on text already read; `path` names it in messages.
+  static nlohmann::json parse_text(const std::string& text, const std::string& path);
 
   const nlohmann::json& raw() const { return *value_; }
   const std::string& file() const { return file_; }
@@ -47,6 +51,7 @@ class JsonReader {
   // ---- scalars at this node ----
   double as_double() const;  // finite number
   std::int64_t as_int() const;
+  int as_int32() const;  // an integer that fits an `int` (checked before any narrowing)
   bool as_bool() const;
   std::string as_string() const;
 

@@ -103,7 +103,7 @@ mesh::TetMesh mesh_from_json(const JsonReader& payload) {
     if (s.size() != m.tets.size())
       s.fail("one tag per tetrahedron (" + std::to_string(m.tets.size()) + ")");
     std::vector<int> values(s.size());
-    for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<int>(s[i].as_int());
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = s[i].as_int32();
     m.element_tags[name] = std::move(values);
   }
   payload.accept("quality");

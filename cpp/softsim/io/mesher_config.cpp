@@ -1,5 +1,6 @@
 #include "softsim/io/mesher_config.hpp"
 
+#include "softsim/io/limits.hpp"
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/vtu_writer.hpp"
 
@@ -14,6 +15,12 @@ void read_cuboid(const JsonReader& source, MesherConfig& c) {
     source.require(cells[a] >= 1 && cells[a] <= 400, "cells", "cell counts between 1 and 400");
     c.cuboid.cells[a] = static_cast<int>(cells[a]);
   }
+  // The artifact holds each node and tetrahedron three times at its peak: in the mesh, as a
+  // JSON value (about 16 bytes a number plus an array per row) and as text.
+  const double cell_count = static_cast<double>(cells[0]) * static_cast<double>(cells[1]) * static_cast<double>(cells[2]);
+  const double node_count = static_cast<double>(cells[0] + 1) * static_cast<double>(cells[1] + 1) * static_cast<double>(cells[2] + 1);
+  require_memory(source, "cells", node_count * kMeshBytesPerNode + 5.0 * cell_count * kMeshBytesPerTet,
+                 "the mesh and its artifact");
   const auto size = source.get_doubles("size", 3);
   for (int a = 0; a < 3; ++a) {
     source.require(size[a] > 0, "size", "three positive edge lengths in metres");
@@ -51,6 +58,15 @@ MesherConfig read_mesher_config(const JsonReader& cfg) {
   else
     read_file(source, c);
   return c;
+}
+
+void check_built_mesh(const nlohmann::json& payload, const std::string& config_path) {
+  try {
+    mesh_from_json(JsonReader(payload, "the mesh built", "/payload"));
+  } catch (const InputError& e) {
+    throw InputError(config_path + ": /source: expected a mesh that passes the mesh reader's checks (sizes and origin " +
+                     "whose tetrahedra have a positive volume in double precision), got " + e.what());
+  }
 }
 
 mesh::TetMesh build_mesh(const MesherConfig& c) {

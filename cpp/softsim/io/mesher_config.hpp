@@ -26,6 +26,12 @@ struct MesherConfig {
   nlohmann::json source;     // the payload's "source" member
 };
 
+// Memory a cuboid mesh takes per node and per tetrahedron while its artifact is made (the mesh,
+// the JSON value, its text and the check of what was built; measured peak of a 60^3 cuboid:
+// 570 MiB), for the estimate checked before anything is built.
+inline constexpr double kMeshBytesPerNode = 400;
+inline constexpr double kMeshBytesPerTet = 450;
+
 // Reads the whole config (calls reject_unknown on every object) without touching any file.
 MesherConfig read_mesher_config(const JsonReader& config);
 
@@ -35,6 +41,12 @@ mesh::TetMesh build_mesh(const MesherConfig& config);
 // The "tet_mesh" payload: the mesh, its quality report and where it came from.
 nlohmann::json mesher_payload(const mesh::TetMesh& mesh, const mesh::QualityReport& quality,
                               const nlohmann::json& source);
+
+// Reads `payload` back with the checks every reader of a tet_mesh artifact applies (io/
+// mesh_artifact.hpp), so that mesher never writes a mesh its readers refuse (tetrahedra of zero
+// volume from sizes of 1e-300, or from an origin of 1e20 with a small size): an InputError
+// naming the config's /source and the reader's complaint.
+void check_built_mesh(const nlohmann::json& payload, const std::string& config_path);
 
 // The mesh as a ParaView file with its element tags as cell data (the config's "vtu").
 void write_mesher_vtu(const std::string& path, const mesh::TetMesh& mesh, VtuFormat format = kDefaultVtuFormat);

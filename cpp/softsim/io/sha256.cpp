@@ -2,10 +2,8 @@
 
 #include <array>
 #include <cstdint>
-#include <fstream>
-#include <sstream>
 
-#include "softsim/io/errors.hpp"
+#include "softsim/io/atomic_file.hpp"
 
 namespace softsim::io {
 namespace {
@@ -74,12 +72,6 @@ std::string sha256_hex(const std::string& bytes) {
   return out;
 }
 
-std::string sha256_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return sha256_hex(buffer.str());
-}
+std::string sha256_file(const std::string& path) { return sha256_hex(read_text_file(path)); }
 
 }  // namespace softsim::io

@@ -70,8 +70,10 @@ class Values {
   void start_data() {
     if (binary_) tok_.begin_binary();
   }
-  std::int64_t integer(const std::string& what) {
-    if (!binary_) return tok_.next_int(what);
+  // A Gmsh "int" (4 bytes in a binary file): a text value beyond the 32-bit range is refused
+  // rather than narrowed (an element type of 4294967300 is not a tetrahedron).
+  int integer(const std::string& what) {
+    if (!binary_) return tok_.next_int32(what);
     std::int32_t v;
     tok_.read_bytes(&v, sizeof v, what);
     return v;
@@ -132,8 +134,8 @@ TetMesh read_v1(TextTokens& tok, const std::string& source) {
   const auto m = tok.next_count("element count");
   for (std::int64_t i = 0; i < m; ++i) {
     tok.next_int("element id");
-    const int type = static_cast<int>(tok.next_int("element type"));
-    const int phys = static_cast<int>(tok.next_int("physical region"));
+    const int type = tok.next_int32("element type");
+    const int phys = tok.next_int32("physical region");
     tok.next_int("elementary region");
     const auto nn = tok.next_count("number of nodes");
     if (nn != gmsh_nodes_per_element(type, tok)) tok.fail("the node count of the element type", std::to_string(nn));
@@ -174,7 +176,7 @@ void read_elements_v2(Values& in, Builder& b) {
     int phys = 0;
     for (std::int64_t t = 0; t < ntags; ++t) {
       const auto v = in.integer("tag");
-      if (t == 0) phys = static_cast<int>(v);
+      if (t == 0) phys = v;
     }
     ids.resize(static_cast<std::size_t>(gmsh_nodes_per_element(type, tok)));
     for (auto& id : ids) id = in.integer("node id");
@@ -183,12 +185,12 @@ void read_elements_v2(Values& in, Builder& b) {
   if (!in.binary()) {
     for (std::int64_t i = 0; i < m; ++i) {
       in.integer("element id");
-      const int type = static_cast<int>(in.integer("element type"));
+      const int type = in.integer("element type");
       element(type, tok.next_count("tag count"));
     }
   } else {
     for (std::int64_t done = 0; done < m;) {
-      const int type = static_cast<int>(in.integer("element type"));
+      const int type = in.integer("element type");
       const auto follow = in.integer("number of elements of the block");
       const auto ntags = in.integer("tag count");
       if (follow < 1 || follow > m - done) tok.fail("a block of 1 to " + std::to_string(m - done) + " elements", std::to_string(follow));
@@ -241,11 +243,11 @@ std::map<int, int> read_entities_v4(Values& in) {
   }
   auto read_bounded = [&](std::int64_t count, bool volume) {
     for (std::int64_t i = 0; i < count; ++i) {
-      const int tag = static_cast<int>(in.integer("entity tag"));
+      const int tag = in.integer("entity tag");
       for (int c = 0; c < 6; ++c) in.real("a bounding-box coordinate");
       const auto nphys = in.count("physical tag count", ib);
       for (std::int64_t p = 0; p < nphys; ++p) {
-        const int phys = static_cast<int>(in.integer("physical tag"));
+        const int phys = in.integer("physical tag");
         if (volume && p == 0) volume_physical[tag] = phys;
       }
       const auto nbound = in.count("bounding entity count", ib);
@@ -299,8 +301,8 @@ void read_elements_v4(Values& in, Builder& b, const std::map<int, int>& volume_p
   std::vector<std::int64_t> ids;
   for (std::int64_t blk = 0; blk < blocks; ++blk) {
     in.integer("entity dimension");
-    const int entity = static_cast<int>(in.integer("entity tag"));
-    const int type = static_cast<int>(in.integer("element type"));
+    const int entity = in.integer("entity tag");
+    const int type = in.integer("element type");
     const int nn = gmsh_nodes_per_element(type, tok);
     const auto n = in.count("elements in block", static_cast<std::size_t>(sb) * (1 + nn));
     const auto phys_it = volume_physical.find(entity);

@@ -1,6 +1,8 @@
 #include "softsim/mesh/text_tokens.hpp"
 
 #include <cctype>
+#include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -60,16 +62,25 @@ double TextTokens::next_double(const std::string& expected) {
 std::int64_t TextTokens::next_int(const std::string& expected) {
   const std::string t = next(expected);
   char* end = nullptr;
+  errno = 0;  // strtoll saturates out of range: ERANGE tells
   const long long v = std::strtoll(t.c_str(), &end, 10);
-  if (end == t.c_str() || *end != '\0') fail(expected, t);
+  if (end == t.c_str() || *end != '\0' || errno == ERANGE) fail(expected + " (a 64-bit integer)", t);
   return v;
+}
+
+int TextTokens::next_int32(const std::string& expected) {
+  const std::string t = peek();
+  const std::int64_t v = next_int(expected);
+  if (v < INT_MIN || v > INT_MAX) fail(expected + " (a 32-bit integer)", t);
+  return static_cast<int>(v);
 }
 
 std::int64_t TextTokens::next_count(const std::string& expected) {
   const std::string t = next(expected);
   char* end = nullptr;
+  errno = 0;
   const long long v = std::strtoll(t.c_str(), &end, 10);
-  if (end == t.c_str() || *end != '\0' || v < 0 || static_cast<std::size_t>(v) > text_.size() - pos_)
+  if (end == t.c_str() || *end != '\0' || errno == ERANGE || v < 0 || static_cast<std::size_t>(v) > text_.size() - pos_)
     fail(expected + " (a count no larger than the rest of the file)", t);
   return v;
 }

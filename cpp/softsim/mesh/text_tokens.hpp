@@ -15,7 +15,8 @@ class TextTokens {
   std::string next(const std::string& expected);  // InputError at end of file
   std::string peek();
   double next_double(const std::string& expected);
-  std::int64_t next_int(const std::string& expected);
+  std::int64_t next_int(const std::string& expected);  // within the 64-bit range
+  int next_int32(const std::string& expected);           // within the 32-bit range (a C int)
   // A count of following items: non-negative and no larger than the bytes left in the text
   // (each item takes at least one byte), so a corrupt count cannot trigger a huge allocation.
   std::int64_t next_count(const std::string& expected);

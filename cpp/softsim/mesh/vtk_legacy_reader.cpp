@@ -183,7 +183,7 @@ TetMesh read_vtk_legacy(const std::string& text, const std::string& source) {
     } else if (keyword == "CELL_TYPES") {
       const auto n = tok.next_count("cell type count");
       cells.types.resize(static_cast<std::size_t>(n));
-      for (auto& t : cells.types) t = static_cast<int>(tok.next_int("a cell type"));
+      for (auto& t : cells.types) t = tok.next_int32("a cell type");
     } else if (keyword == "CELL_DATA") {
       cell_data_line = tok.line();
       cell_data_count = tok.next_count("data count");

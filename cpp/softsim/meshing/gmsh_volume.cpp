@@ -1,5 +1,6 @@
 #include "softsim/meshing/gmsh_volume.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <unordered_map>
@@ -8,6 +9,7 @@
 
 #include "softsim/io/atomic_file.hpp"
 #include "softsim/io/errors.hpp"
+#include "softsim/io/limits.hpp"
 #include "softsim/mesh/obj_reader.hpp"
 
 namespace softsim::meshing {
@@ -83,7 +85,19 @@ mesh::TetMesh mesh_volume(double target_edge) {
   gmsh::model::addPhysicalGroup(3, {volume}, 1);
   gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
   gmsh::option::setNumber("Mesh.Optimize", 1);
-  if (target_edge > 0) gmsh::option::setNumber("Mesh.MeshSizeMax", target_edge);
+  if (target_edge > 0) {
+    // A fine target edge meshes for minutes into millions of tetrahedra: estimated from the
+    // bounding box (regular tetrahedra of edge h fill it at V / (h^3 / 6 sqrt 2)) and refused
+    // over the memory limit before Gmsh starts (about 2 kB a tetrahedron in Gmsh, the mesh and
+    // the artifact).
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+    const double box = std::max(x1 - x0, 0.0) * std::max(y1 - y0, 0.0) * std::max(z1 - z0, 0.0);
+    const double tets = box / (target_edge * target_edge * target_edge / (6.0 * std::sqrt(2.0)));
+    io::require_memory("/source/target_edge", 2000.0 * tets, "the Gmsh volume mesh (about " +
+                       std::to_string(static_cast<long long>(std::min(tets, 1e18))) + " tetrahedra)");
+    gmsh::option::setNumber("Mesh.MeshSizeMax", target_edge);
+  }
   gmsh::model::mesh::generate(3);
 
   std::vector<std::size_t> node_tags, tet_tags, tet_nodes;
@@ -112,6 +126,7 @@ mesh::TetMesh mesh_volume(double target_edge) {
 mesh::TetMesh volume_from_surface(const std::string& path, double target_edge) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  io::require_input_file(path);  // a regular file of bounded size: Gmsh would read a device for ever
   // Read (and check) an OBJ file before Gmsh starts: its errors name the line.
   const mesh::TriangleSurface obj =
       ext == ".obj" ? mesh::read_obj(io::read_text_file(path), path) : mesh::TriangleSurface();

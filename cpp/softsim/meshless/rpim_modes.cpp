@@ -1,8 +1,10 @@
 #include "softsim/meshless/rpim_modes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "softsim/io/limits.hpp"
 #include "softsim/meshless/lee_radok.hpp"
 #include "softsim/meshless/result_json.hpp"
 #include "softsim/meshless/rpim_config.hpp"
@@ -57,6 +59,17 @@ RpimOutput run_dataset(const io::JsonReader& cfg) {
   std::optional<IndentationInputs> indentation;
   if (const auto ind = cfg.optional("indentation")) indentation = read_indentation(*ind);
   cfg.reject_unknown();
+  // Memory, estimated before anything is assembled: a dense factorisation holds the 3N x 3N
+  // stiffness and its factor; every case writes 3 displacements of each node it reports as
+  // JSON values and text (about 60 bytes a number).
+  const double nodes = static_cast<double>(scene.nodes[0]) * scene.nodes[1] * scene.nodes[2];
+  if (settings.solver == SolverKind::dense_llt)
+    io::require_memory("/solver", 2.0 * (3.0 * nodes) * (3.0 * nodes) * 8.0, "the dense stiffness and its factor");
+  const double reported = all_nodes ? nodes : static_cast<double>(scene.nodes[0]) * scene.nodes[1];
+  double cases_reported = 0;
+  for (const auto& spec : specs) cases_reported += std::max(spec.count, 1);
+  io::require_memory(several ? "/datasets" : "/dataset", cases_reported * reported * 3.0 * 60.0,
+                     "the displacements of every case");
 
   std::vector<std::vector<Eigen::Vector3d>> force_sets;
   for (const auto& spec : specs) force_sets.push_back(dataset_forces(spec));
@@ -146,7 +159,12 @@ RpimOutput run_convergence(const io::JsonReader& cfg) {
     cfg.require(n >= 3 && n <= 41, "nodes_per_edge", "node counts per edge between 3 and 41");
     counts.push_back(static_cast<int>(n));
   }
-  cfg.require(!counts.empty(), "nodes_per_edge", "a non-empty list of node counts per edge");
+  cfg.require(!counts.empty() && counts.size() <= 64, "nodes_per_edge", "a list of 1 to 64 node counts per edge");
+  if (settings.solver == SolverKind::dense_llt) {
+    const double nodes = std::pow(*std::max_element(counts.begin(), counts.end()), 3.0);
+    io::require_memory(cfg, "nodes_per_edge", 2.0 * (3.0 * nodes) * (3.0 * nodes) * 8.0,
+                       "the dense stiffness and its factor of the finest block");
+  }
   cfg.reject_unknown();
 
   const std::vector<ConvergencePoint> study = convergence_study(block, settings, counts);

@@ -1,0 +1,161 @@
+"""What an adversarial run of the tools and the pipeline must not break (issue: hardening):
+outputs that are devices or inputs, a failed run's leftovers, memory estimates refused before
+anything is allocated, stale temporaries of killed writers, an experiment nested too deep or
+sweeping too far, and cached artifacts that no longer match what their run wrote."""
+import json
+import os
+import stat
+import subprocess
+from pathlib import Path
+
+from conftest import run_pipeline, run_tool, tool, write_json
+
+CUBOID = {"source": {"kind": "cuboid", "cells": [2, 2, 2], "size": [0.02, 0.02, 0.02]}}
+QUICK = {"stages": {"cube": {"tool": "mesher", "config": {
+    "source": {"kind": "cuboid", "cells": [1, 1, 1], "size": [0.01, 0.01, 0.01]}}}}}
+
+
+def one_error_line(r):
+    lines = [l for l in r.stderr.splitlines() if l.strip()]
+    assert len(lines) == 1, r.stderr
+    return lines[0]
+
+
+def dead_pid():
+    proc = subprocess.Popen(["true"])
+    proc.wait()
+    return proc.pid
+
+
+def test_out_naming_a_device_is_refused_and_the_device_kept(tmp_path):
+    cfg = write_json(tmp_path / "c.json", CUBOID)
+    r = run_tool("mesher", "--config", cfg, "--out", "/dev/null")
+    assert r.returncode == 2
+    assert "--out /dev/null: expected a regular file or a new file name, got a device" in one_error_line(r)
+    assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
+
+
+def test_out_through_a_link_to_a_device_is_refused(tmp_path):
+    link = tmp_path / "out.json"
+    link.symlink_to("/dev/null")
+    r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", CUBOID), "--out", link)
+    assert r.returncode == 2 and "got a device" in one_error_line(r)
+    assert link.is_symlink() and stat.S_ISCHR(os.stat("/dev/null").st_mode)
+
+
+def test_vtu_naming_the_out_file_is_refused(tmp_path):
+    out = tmp_path / "mesh.json"
+    cfg = write_json(tmp_path / "c.json", {**CUBOID, "vtu": str(out)})
+    r = run_tool("mesher", "--config", cfg, "--out", out)
+    assert r.returncode == 2 and f"{cfg}: /vtu: expected a file other than the --out file" in one_error_line(r)
+    assert not out.exists()
+
+
+def test_a_failed_run_leaves_none_of_its_vtu_files(tmp_path):
+    """A forced step above the stability limit blows up after some snapshots were written: exit
+    3, and neither the snapshots, the .pvd series nor the artifact are left."""
+    mesh = tmp_path / "mesh.json"
+    assert run_tool("mesher", "--config", write_json(tmp_path / "m.json", CUBOID), "--out", mesh).returncode == 0
+    keep = tmp_path / "notes.txt"
+    keep.write_text("not the run's")
+    cfg = write_json(tmp_path / "run.json", {
+        "mesh": str(mesh), "material": {"model": "neo_hookean_paper", "E": 5000, "nu": 0.35, "density": 1000},
+        "boundary": {"fixed": ["bottom"], "prescribed": [{"set": "top", "displacement": [0, 0, -0.001]}]},
+        "solver": {"kind": "explicit", "steps": 20000, "dt": 0.05, "force_dt": True},
+        "output": {"vtu": str(tmp_path / "sim.vtu"), "vtu_interval": 1}})
+    r = run_tool("dhd_sim", "--config", cfg, "--out", tmp_path / "out.json")
+    assert r.returncode == 3, r.stderr
+    left = sorted(p.name for p in tmp_path.iterdir())
+    assert left == ["m.json", "mesh.json", "notes.txt", "run.json"], left
+
+
+def test_memory_estimate_over_the_limit_is_refused_before_building(tmp_path):
+    cfg = write_json(tmp_path / "c.json", {"source": {"kind": "cuboid", "cells": [60, 60, 60], "size": [1, 1, 1]}})
+    env = dict(os.environ, SOFTSIM_MEMORY_LIMIT_MB="100")
+    r = subprocess.run([str(tool("mesher")), "--config", str(cfg), "--out", str(tmp_path / "o.json")],
+                       capture_output=True, text=True, env=env, timeout=60)
+    assert r.returncode == 2
+    line = one_error_line(r)
+    assert f"{cfg}: /source/cells: expected a size whose run fits the memory limit" in line
+    assert "MiB, the limit is 100.0 MiB (SOFTSIM_MEMORY_LIMIT_MB)" in line
+    assert not (tmp_path / "o.json").exists()
+
+
+def test_input_larger_than_the_limit_is_refused(tmp_path):
+    cfg = tmp_path / "c.json"
+    cfg.write_text(json.dumps(CUBOID) + " " * 2_000_000)
+    env = dict(os.environ, SOFTSIM_MAX_INPUT_MB="1")
+    r = subprocess.run([str(tool("mesher")), "--config", str(cfg), "--out", str(tmp_path / "o.json")],
+                       capture_output=True, text=True, env=env, timeout=60)
+    assert r.returncode == 2
+    assert f"{cfg}: expected a file of at most 1.0 MiB (SOFTSIM_MAX_INPUT_MB)" in one_error_line(r)
+
+
+def test_stale_temporary_of_a_dead_writer_is_removed_by_the_next_write(tmp_path):
+    out = tmp_path / "o.json"
+    dead, live = tmp_path / f"o.json.tmp.{dead_pid()}", tmp_path / f"o.json.tmp.{os.getpid()}"
+    dead.write_bytes(b"x" * 1000)
+    live.write_bytes(b"y")
+    r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", CUBOID), "--out", out)
+    assert r.returncode == 0, r.stderr
+    assert not dead.exists() and live.exists() and out.exists()
+
+
+# ----------------------------------------------------------------------------- the pipeline
+def write_experiment(env, name, text):
+    (Path(env["PIPELINE_EXPERIMENTS"]) / f"{name}.json").write_text(text)
+
+
+def test_experiment_nested_too_deep_is_one_line(pipeline_env):
+    deep = '{"stages": {"cube": {"tool": "mesher", "config": {"x": ' + "[" * 30000 + "]" * 30000 + "}}}}"
+    write_experiment(pipeline_env, "t", deep)
+    r = run_pipeline(pipeline_env, "run", "t")
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    assert "t.json: /: expected arrays and objects nested at most 64 deep" in one_error_line(r)
+
+
+def test_sweep_beyond_the_limit_is_refused_and_a_sweep_announced(pipeline_env):
+    doc = json.loads(json.dumps(QUICK))
+    doc["stages"]["cube"]["sweep"] = {"sliver_threshold_deg": list(range(1, 102)), "source.size": [[0.01] * 3] * 100}
+    write_experiment(pipeline_env, "t", json.dumps(doc))
+    r = run_pipeline(pipeline_env, "run", "t")
+    assert r.returncode == 2
+    assert "t.json: /stages/cube/sweep: expected a sweep of at most 10000 runs" in one_error_line(r)
+    assert "got 101 x 100 = 10100" in r.stderr
+    doc["stages"]["cube"]["sweep"] = {"sliver_threshold_deg": [4, 5]}
+    write_experiment(pipeline_env, "t", json.dumps(doc))
+    env = dict(pipeline_env, PIPELINE_MAX_SWEEP_RUNS="1")
+    r = run_pipeline(env, "run", "t")
+    assert r.returncode == 2 and "got 2 = 2" in one_error_line(r)
+    tool("mesher")
+    r = run_pipeline(pipeline_env, "run", "t")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "pipeline: t: 2 runs; sweeps: cube 2" in r.stdout, r.stdout
+
+
+def test_a_damaged_cached_artifact_is_run_again(pipeline_env):
+    tool("mesher")
+    write_experiment(pipeline_env, "t", json.dumps(QUICK))
+    assert run_pipeline(pipeline_env, "run", "t").returncode == 0
+    [artifact] = (Path(pipeline_env["PIPELINE_CACHE"]) / "artifacts").rglob("*.json")
+    whole = artifact.read_bytes()
+    assert "cached cube" in run_pipeline(pipeline_env, "run", "t").stdout
+    artifact.write_bytes(whole[: len(whole) // 2])
+    r = run_pipeline(pipeline_env, "run", "t")
+    assert r.returncode == 0 and "ran cube" in r.stdout, r.stdout
+    assert artifact.read_bytes() == whole
+
+
+def test_playback_over_the_memory_limit_names_the_forces(tmp_path):
+    from test_bad_input import Inputs
+    fit = Inputs(tmp_path).fit()
+    cfg = write_json(tmp_path / "play.json", {"fit": str(fit), "forces": [[0, 0, 0.5]] * 1000})
+    out = tmp_path / "o.json"
+    env = dict(os.environ, SOFTSIM_MEMORY_LIMIT_MB="0.1")
+    r = subprocess.run([str(tool("marquardt_fit")), "play", "--config", str(cfg), "--out", str(out)],
+                       capture_output=True, text=True, env=env, timeout=60)
+    assert r.returncode == 2
+    assert f"{cfg}: /forces: expected a size whose run fits the memory limit" in one_error_line(r)
+    assert not out.exists()
+    r = run_tool("marquardt_fit", "play", "--config", cfg, "--out", out)
+    assert r.returncode == 0, r.stderr
