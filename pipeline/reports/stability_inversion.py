@@ -55,9 +55,20 @@ def report(ctx):
             reach[key] = max(reach.get(key, 0.0), r["depth"])
         else:
             reach.setdefault(key, 0.0)
+    stopped = [f"{r['kind']} ({r['probe']})" for r in p["explicit"] if r["exit"] == 3]
+    through = [f"{r['kind']} ({r['probe']})" for r in p["explicit"] if r["exit"] == 0]
+    if not through:
+        opening = "every element kind is stopped by the inversion check, "
+    elif stopped:
+        opening = (f"{', '.join(through)} reached the full depth (the automatic step, re-estimated on the deformed "
+                   f"mesh, shrinks as the elements under the probe flatten); the others are stopped by the inversion "
+                   f"check, ")
+    else:
+        opening = "every element kind reached the full depth without inverting. "
     text += ["",
-             "In plain words: every element kind is stopped by the inversion check, "
-             + ("always with a message that names the step, the element and J. " if clear else
+             "In plain words: " + opening
+             + ("" if not stopped else
+                "always with a message that names the step, the element and J. " if clear else
                 "but the " + ", ".join(unclear) + " element is caught one step late, as a non-finite displacement "
                 "(the message names the step and the node, not the inverted element and J). ")
              + deepest_words(p["explicit"])
