@@ -237,7 +237,7 @@ def write_haptic(ctx, rows):
 def summary(ctx, events, costs, facts, fall, haptic):
     press = [r for r in events if r["scene"].startswith("press_cut")]
     through = next(r for r in events if r["scene"] == "through_cut")
-    lines = ["## Cutting (019)\n",
+    lines = ["## Cutting\n",
              "A cut by element removal deletes the elements a blade's swept surface crosses, by a local update of the "
              "explicit engine (nothing is set up again; `dhd_sim` config `cuts`, cpp/apps/dhd_sim.md). "
              "Tables: [events](cutting/events.md), [cost](cutting/cost.md), [stability](cutting/stability.md); "

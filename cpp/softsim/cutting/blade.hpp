@@ -1,5 +1,5 @@
 #pragma once
-// The blade of a cut (019): a straight edge from a to b, swept in one cut event from its start
+// The blade of a cut: a straight edge from a to b, swept in one cut event from its start
 // position (a0, b0) to its end position (a1, b1). The swept surface is the quadrilateral
 // a0 b0 b1 a1, taken as the two triangles (a0, b0, b1) and (a0, b1, a1); the elements it
 // crosses (in the current, deformed geometry) are the ones a cut by element removal deletes.

@@ -1,5 +1,5 @@
 #pragma once
-// The pieces a cut leaves (019): connected components of the remaining elements (two elements
+// The pieces a cut leaves: connected components of the remaining elements (two elements
 // are connected when they share a node), and which of them hang free (no node held by a
 // constraint). A loose piece keeps moving under the dynamics; it is reported, not removed.
 #include <functional>

@@ -206,7 +206,7 @@ class ExplicitSolver {
   // F · Δu is booked exactly (the force is constant between calls). An empty set removes them.
   void set_applied_forces(const std::vector<AppliedForce>& forces);
 
-  // Between steps: a cut by element removal (019). The element set drops the elements by a local
+  // Between steps: a cut by element removal. The element set drops the elements by a local
   // update (fem::ElementSet::remove_elements), their lumped mass ρ⁰V/4 leaves their corners and
   // only those nodes' central-difference coefficients are recomputed; a node left without any
   // element holds its place. Nothing global is rebuilt. The stable step cannot shrink: each

@@ -41,7 +41,7 @@ class ContactSurface {
   // The point of `triangle` with barycentric `weights`, in the deformed state.
   SurfacePoint at(int triangle, const Eigen::Vector3d& weights, const double* u) const;
 
-  // A cut removed `elements` (019): their faces on the surface leave it, and the faces they
+  // A cut removed `elements`: their faces on the surface leave it, and the faces they
   // uncover on the elements left join it, oriented outward. Triangle indices of the faces that
   // stay do not change (a contact on one stays valid); removed triangles are never returned
   // again. The node → triangle lists are rebuilt (linear in the surface size). `removed(e)`:

@@ -31,7 +31,7 @@ struct HapticOptions {
   double frame_step = 1e-3;       // s (1 kHz)
   double probe_stiffness = 100;   // k (N/m)
   ContactMode contact = ContactMode::grasp;
-  // A blade on the tool (019): an edge from tip − blade_edge/2 to tip + blade_edge/2 that cuts,
+  // A blade on the tool: an edge from tip − blade_edge/2 to tip + blade_edge/2 that cuts,
   // each frame, the elements its sweep from the previous tip to the current one crosses.
   bool blade = false;
   Eigen::Vector3d blade_edge = Eigen::Vector3d::Zero();  // m

@@ -1,5 +1,5 @@
 #pragma once
-// `dhd_sim --cut-bench`: what a topology change costs (019, 000's claim measured). On the
+// `dhd_sim --cut-bench`: what a topology change costs (issue 19, 000's claim measured). On the
 // config's mesh, partition, scene and first cut (taken on the undeformed mesh):
 //   * the explicit engine: its one-time set-up, one step, the cut event (finding the crossed
 //     elements, the local update) and a full set-up on the cut mesh (what an engine without

@@ -1,5 +1,5 @@
 #pragma once
-// The "cuts" of a dhd_sim config (019, cutting by element removal):
+// The "cuts" of a dhd_sim config (issue 19, cutting by element removal):
 //   "cuts": [{"time": t, "from": [[ax, ay, az], [bx, by, bz]], "to": [[...], [...]],
 //             "mode": "remove"}, ...]
 // At time t (s) the blade edge a–b sweeps from its `from` position to its `to` position, and

@@ -68,7 +68,7 @@ class DhdScene {
   // The whole configured run (config.explicit_solver.steps steps from t = 0), as dhd_sim runs it.
   dynamics::ExplicitResult run(const dynamics::SnapshotFn& snapshot = {}, const dynamics::ProgressFn& progress = {});
 
-  // ---- cutting by element removal (019) ----
+  // ---- cutting by element removal ----
   struct CutEvent {
     double time = 0;
     int step = 0;
