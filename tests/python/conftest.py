@@ -63,8 +63,12 @@ def payload(path):
 
 
 def without_timing(p):
-    """A payload without its wall-clock member (the one thing two runs do not share)."""
-    return {k: v for k, v in p.items() if k != "timing"}
+    """A payload without its wall-clock members (the one thing two runs do not share): the
+    "timing" block, and the wall times of each cut event."""
+    out = {k: v for k, v in p.items() if k != "timing"}
+    if isinstance(out.get("cuts"), list):
+        out["cuts"] = [{k: v for k, v in c.items() if not k.endswith("_seconds")} for c in out["cuts"]]
+    return out
 
 
 # The placeholders of the bad-input corpus (tests/bad_input/README.md) and the valid inputs they
