@@ -127,20 +127,22 @@ void ExplicitSolver::set_node_coefficients(int i) {
   Am_[i] = cd.A * mass_[i];
 }
 
-double ExplicitSolver::time_at(int step) const {
-  if (segments_.empty()) return step * opt_.dt;
+// The step segment that step `step` lies in (the first one for steps before it, the current one
+// beyond the last); before any reset, one segment of the configured step.
+StepSegment ExplicitSolver::segment_at(int step) const {
+  if (segments_.empty()) return StepSegment{0, 0.0, opt_.dt};
   auto it = segments_.rbegin();
   while (it + 1 != segments_.rend() && it->first_step > step) ++it;
-  // With one segment (a constant step) this is step × dt exactly.
-  return it->time + (step - it->first_step) * it->dt;
+  return *it;
 }
 
-double ExplicitSolver::step_size(int step) const {
-  if (segments_.empty()) return opt_.dt;
-  auto it = segments_.rbegin();
-  while (it + 1 != segments_.rend() && it->first_step > step) ++it;
-  return it->dt;
+double ExplicitSolver::time_at(int step) const {
+  const StepSegment seg = segment_at(step);
+  // With one segment (a constant step) this is step × dt exactly.
+  return seg.time + (step - seg.first_step) * seg.dt;
 }
+
+double ExplicitSolver::step_size(int step) const { return segment_at(step).dt; }
 
 std::string ExplicitSolver::where(int step) const {
   std::ostringstream s;

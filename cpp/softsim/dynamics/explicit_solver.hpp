@@ -251,6 +251,7 @@ class ExplicitSolver {
   void mark_held_nodes();  // held_ from dofs_ and moving_
   void set_coefficients(double dt_before, double dt_after);
   void set_node_coefficients(int i);
+  StepSegment segment_at(int step) const;
   void fire_due_events();
   void check_step();
   std::string where(int step) const;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <map>
 #include <set>
 
 #include "softsim/io/errors.hpp"
@@ -74,32 +73,50 @@ void ContactSurface::remove_elements(const std::vector<int>& elements, const std
     return f;
   };
   static constexpr int kOpposite[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  // The faces of the removed elements, and the live triangles among them.
-  std::map<Face, int> surface;  // sorted face -> live triangle
+  auto face_of = [&](int e, int a) {
+    const auto& t = mesh_.tets[e];
+    return Face{t[kOpposite[a][0]], t[kOpposite[a][1]], t[kOpposite[a][2]]};
+  };
+  if (node_tet_begin_.empty()) {  // node -> tetrahedra, once: the neighbours of a face are found locally
+    const int n = mesh_.num_nodes();
+    node_tet_begin_.assign(n + 1, 0);
+    for (const auto& t : mesh_.tets)
+      for (int v : t) ++node_tet_begin_[v + 1];
+    for (int i = 0; i < n; ++i) node_tet_begin_[i + 1] += node_tet_begin_[i];
+    node_tets_.resize(node_tet_begin_[n]);
+    std::vector<int> fill(node_tet_begin_.begin(), node_tet_begin_.end() - 1);
+    for (int e = 0; e < mesh_.num_tets(); ++e)
+      for (int v : mesh_.tets[e]) node_tets_[fill[v]++] = e;
+  }
   std::set<Face> cut_faces;
   for (int e : elements)
-    for (const auto& f : kOpposite) cut_faces.insert(key({mesh_.tets[e][f[0]], mesh_.tets[e][f[1]], mesh_.tets[e][f[2]]}));
-  for (int t = 0; t < num_triangles(); ++t)
-    if (live_[t] && cut_faces.count(key(triangles_[t]))) surface[key(triangles_[t])] = t;
-  for (const auto& [face, t] : surface) live_[t] = 0;
-  // A removed element's face that was not on the surface had a neighbour: if that one is left,
-  // its face joins the surface, oriented outward from it (kOpposite keeps the mesh's outward
-  // orientation for a positively oriented tetrahedron). One pass over the elements.
-  std::set<Face> uncovered;
-  for (const auto& f : cut_faces)
-    if (!surface.count(f)) uncovered.insert(f);
-  if (!uncovered.empty())
-    for (int e = 0; e < mesh_.num_tets(); ++e) {
-      if (removed(e)) continue;
-      const auto& t = mesh_.tets[e];
-      for (const auto& f : kOpposite) {
-        const Face face = {t[f[0]], t[f[1]], t[f[2]]};
-        if (uncovered.count(key(face))) {
-          triangles_.push_back(face);
-          live_.push_back(1);
-        }
-      }
+    for (int a = 0; a < 4; ++a) cut_faces.insert(key(face_of(e, a)));
+  // A cut face on the surface leaves it (its live triangle is among those at its first node);
+  // any other cut face had a neighbour: if that one is left, its face joins the surface,
+  // oriented outward from it (kOpposite keeps the mesh's outward orientation for a positively
+  // oriented tetrahedron).
+  std::vector<int> leaving;
+  std::vector<Face> joining;
+  for (const Face& f : cut_faces) {
+    int on_surface = -1;
+    for (int k = node_triangle_begin_[f[0]]; k < node_triangle_begin_[f[0] + 1] && on_surface < 0; ++k)
+      if (key(triangles_[node_triangles_[k]]) == f) on_surface = node_triangles_[k];
+    if (on_surface >= 0) {
+      leaving.push_back(on_surface);
+      continue;
     }
+    for (int k = node_tet_begin_[f[0]]; k < node_tet_begin_[f[0] + 1]; ++k) {
+      const int e = node_tets_[k];
+      if (removed(e)) continue;
+      for (int a = 0; a < 4; ++a)
+        if (key(face_of(e, a)) == f) joining.push_back(face_of(e, a));
+    }
+  }
+  for (int t : leaving) live_[t] = 0;
+  for (const Face& f : joining) {
+    triangles_.push_back(f);
+    live_.push_back(1);
+  }
   index_nodes();
 }
 

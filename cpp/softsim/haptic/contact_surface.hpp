@@ -44,7 +44,8 @@ class ContactSurface {
   // A cut removed `elements`: their faces on the surface leave it, and the faces they
   // uncover on the elements left join it, oriented outward. Triangle indices of the faces that
   // stay do not change (a contact on one stays valid); removed triangles are never returned
-  // again. The node → triangle lists are rebuilt (linear in the surface size). `removed(e)`:
+  // again. Faces are matched through the node → triangle and node → tetrahedron lists (local);
+  // the node → triangle lists are then rebuilt (linear in the surface size). `removed(e)`:
   // element e is gone (the ones given here included).
   void remove_elements(const std::vector<int>& elements, const std::function<bool(int)>& removed);
   bool live(int triangle) const { return live_[triangle] != 0; }
@@ -58,7 +59,8 @@ class ContactSurface {
   const mesh::TetMesh& mesh_;
   std::vector<std::array<int, 3>> triangles_;
   std::vector<char> live_;  // per triangle: still on the surface
-  std::vector<int> node_triangle_begin_, node_triangles_;  // CSR: triangles at each node
+  std::vector<int> node_triangle_begin_, node_triangles_;  // CSR: live triangles at each node
+  std::vector<int> node_tet_begin_, node_tets_;            // CSR: tetrahedra at each node (built at the first cut)
 };
 
 }  // namespace softsim::haptic
