@@ -272,9 +272,10 @@ def summary(ctx, events, costs, facts, fall, haptic):
                      f"(at most {fmt(US * h['cut_max'])} µs); frames {fmt(1000 * h['p50'])} ms median, "
                      f"{fmt(1000 * h['p99'])} ms p99, {h['misses']} of {h['frames']} over the 1 ms deadline "
                      f"([haptic](cutting/haptic.md)).")
-    lines.append(f"- Not done yet: separation along faces (node duplication); the search for crossed elements "
-                 f"scans every element (a grid or tree over the blade's neighbourhood would make it local). "
-                 f"The pressed-cuboid cuts removed {sum(r['event']['elements_removed'] for r in press)} elements "
+    lines.append(f"- The search for crossed elements tests only the elements a uniform grid over their "
+                 f"reference boxes finds near the sweep, widened by the largest nodal displacement "
+                 f"(cpp/softsim/cutting/element_grid.hpp). Not done yet: separation along faces (node "
+                 f"duplication). The pressed-cuboid cuts removed {sum(r['event']['elements_removed'] for r in press)} elements "
                  f"over {len(press)} runs.\n")
     ctx.out("summary.md").write_text("\n".join(lines) + "\n")
 

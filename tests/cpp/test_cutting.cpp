@@ -7,6 +7,7 @@
 #include <random>
 
 #include "softsim/cutting/blade.hpp"
+#include "softsim/cutting/element_grid.hpp"
 #include "softsim/cutting/pieces.hpp"
 #include "softsim/dynamics/explicit_solver.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
@@ -91,6 +92,38 @@ TEST(Blade, CrossingIsInteriorOverlapOnly) {
 // The local update (slots emptied, linear blocks subtracted, ANP volumes re-weighted) gives the
 // forces of an element set built from scratch on the mesh without those elements, to round-off,
 // for every kind; the mass removed is exactly ρ Σ ⁰V of the removed elements.
+// The grid's local search finds exactly the elements the full scan finds, for sweeps of every
+// size and place (inside, across, beside, outside the mesh) on a deformed mesh: the widening
+// by the largest displacement must not miss an element that moved into the sweep.
+TEST(Blade, GridSearchEqualsTheFullScanOnADeformedMesh) {
+  const auto m = cuboid(6, 5, 4, 0.06, 0.05, 0.04);
+  const cutting::ElementGrid grid(m);
+  EXPECT_GT(grid.num_cells(), 1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> shift(-4e-3, 4e-3), place(-0.02, 0.08), unit(-1.0, 1.0);
+  std::vector<double> u(3 * m.num_nodes());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = shift(rng);
+  u[3 * 17 + 2] = 0.03;  // one node moved far (3 cm up): its elements reach well outside their boxes
+  std::vector<int> scratch;
+  int nonempty = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    cutting::BladeSweep s;
+    s.a0 = Eigen::Vector3d(place(rng), place(rng), place(rng));
+    const double len = trial < 150 ? 0.01 : 0.06;
+    s.b0 = s.a0 + len * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    const Eigen::Vector3d move = len * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    s.a1 = s.a0 + move;
+    s.b1 = s.b0 + move;
+    if (!cutting::sweep_problem(s).empty()) continue;
+    const double* disp = trial % 3 == 0 ? nullptr : u.data();
+    const auto skip = [](int e) { return e % 7 == 3; };
+    const auto scanned = cutting::elements_crossed(m, disp, s, skip);
+    EXPECT_EQ(cutting::elements_crossed(m, disp, s, grid, scratch, skip), scanned) << "trial " << trial;
+    nonempty += !scanned.empty();
+  }
+  EXPECT_GT(nonempty, 50);  // the comparison is not only between empty lists
+}
+
 TEST(Cutting, LocalUpdateEqualsAFullSetUpOnTheCutMesh) {
   const auto m = cuboid(4, 4, 4, 0.04, 0.04, 0.04);
   const fem::Material mat = fem::Material::make(kPaper, material::NeoHookeanForm::decoupled);

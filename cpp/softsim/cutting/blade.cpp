@@ -52,18 +52,18 @@ bool crosses(const Tetrahedron& tet, const Triangle& tri) {
   for (int i = 1; i < 4; ++i) size = std::max(size, (tet[i] - tet[0]).norm());
   for (int i = 1; i < 3; ++i) size = std::max(size, (tri[i] - tri[0]).norm());
   const double tol = 1e-12 * size;
-  std::vector<Eigen::Vector3d> axes;
-  axes.reserve(1 + 4 + 18);
-  const Eigen::Vector3d n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-  axes.push_back(n);
+  std::array<Eigen::Vector3d, 1 + 4 + 18> axes;  // no allocation: a haptic blade tests every frame
+  int count = 0;
+  axes[count++] = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
   static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  for (const auto& f : kFace) axes.push_back((tet[f[1]] - tet[f[0]]).cross(tet[f[2]] - tet[f[0]]));
+  for (const auto& f : kFace) axes[count++] = (tet[f[1]] - tet[f[0]]).cross(tet[f[2]] - tet[f[0]]);
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d te = tri[(i + 1) % 3] - tri[i];
-    for (const auto& e : kEdge) axes.push_back(te.cross(tet[e[1]] - tet[e[0]]));
+    for (const auto& e : kEdge) axes[count++] = te.cross(tet[e[1]] - tet[e[0]]);
   }
-  for (const auto& axis : axes) {
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d& axis = axes[i];
     const double norm = axis.norm();
     if (!(norm > 1e-12 * size * size)) continue;  // parallel edges: no axis
     if (!overlap_on(axis / norm, tet, tri, tol)) return false;
@@ -71,26 +71,52 @@ bool crosses(const Tetrahedron& tet, const Triangle& tri) {
   return true;
 }
 
+namespace {
+
+// Whether the sweep crosses element e in its current geometry (box test first).
+bool crossed_now(const mesh::TetMesh& mesh, const double* u, int e, const Eigen::Vector3d& lo,
+                 const Eigen::Vector3d& hi, const std::array<Triangle, 2>& triangles) {
+  Tetrahedron t;
+  Eigen::Vector3d tlo = Eigen::Vector3d::Constant(1e300), thi = Eigen::Vector3d::Constant(-1e300);
+  for (int a = 0; a < 4; ++a) {
+    const int node = mesh.tets[e][a];
+    t[a] = mesh.nodes[node];
+    if (u) t[a] += Eigen::Vector3d(u[3 * node], u[3 * node + 1], u[3 * node + 2]);
+    tlo = tlo.cwiseMin(t[a]);
+    thi = thi.cwiseMax(t[a]);
+  }
+  if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) return false;
+  return crosses(t, triangles[0]) || crosses(t, triangles[1]);
+}
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> sweep_box(const BladeSweep& s) {
+  return {s.a0.cwiseMin(s.b0).cwiseMin(s.a1).cwiseMin(s.b1), s.a0.cwiseMax(s.b0).cwiseMax(s.a1).cwiseMax(s.b1)};
+}
+
+}  // namespace
+
 std::vector<int> elements_crossed(const mesh::TetMesh& mesh, const double* u, const BladeSweep& sweep,
                                   const std::function<bool(int)>& skip) {
   const auto triangles = swept_triangles(sweep);
-  Eigen::Vector3d lo = sweep.a0.cwiseMin(sweep.b0).cwiseMin(sweep.a1).cwiseMin(sweep.b1);
-  Eigen::Vector3d hi = sweep.a0.cwiseMax(sweep.b0).cwiseMax(sweep.a1).cwiseMax(sweep.b1);
+  const auto [lo, hi] = sweep_box(sweep);
   std::vector<int> out;
-  for (int e = 0; e < mesh.num_tets(); ++e) {
-    if (skip && skip(e)) continue;
-    Tetrahedron t;
-    Eigen::Vector3d tlo = Eigen::Vector3d::Constant(1e300), thi = Eigen::Vector3d::Constant(-1e300);
-    for (int a = 0; a < 4; ++a) {
-      const int node = mesh.tets[e][a];
-      t[a] = mesh.nodes[node];
-      if (u) t[a] += Eigen::Vector3d(u[3 * node], u[3 * node + 1], u[3 * node + 2]);
-      tlo = tlo.cwiseMin(t[a]);
-      thi = thi.cwiseMax(t[a]);
-    }
-    if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
-    if (crosses(t, triangles[0]) || crosses(t, triangles[1])) out.push_back(e);
-  }
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    if (!(skip && skip(e)) && crossed_now(mesh, u, e, lo, hi, triangles)) out.push_back(e);
+  return out;
+}
+
+std::vector<int> elements_crossed(const mesh::TetMesh& mesh, const double* u, const BladeSweep& sweep,
+                                  const ElementGrid& grid, std::vector<int>& candidates,
+                                  const std::function<bool(int)>& skip) {
+  const auto triangles = swept_triangles(sweep);
+  const auto [lo, hi] = sweep_box(sweep);
+  // An element's current box lies within its reference box widened by the largest nodal
+  // displacement, so reference boxes overlapping the widened sweep box hold every crossing.
+  const Eigen::Vector3d reach = Eigen::Vector3d::Constant(largest_displacement(u, mesh.num_nodes()));
+  grid.candidates(lo - reach, hi + reach, candidates);
+  std::vector<int> out;
+  for (int e : candidates)
+    if (!(skip && skip(e)) && crossed_now(mesh, u, e, lo, hi, triangles)) out.push_back(e);
   return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "softsim/cutting/element_grid.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::cutting {
@@ -38,6 +39,11 @@ bool crosses(const Tetrahedron& tet, const Triangle& tri);
 // sweep crosses, ascending; `skip(e)` true leaves an element out (one removed already). An
 // axis-aligned box test first, then crosses().
 std::vector<int> elements_crossed(const mesh::TetMesh& mesh, const double* u, const BladeSweep& sweep,
+                                  const std::function<bool(int)>& skip = {});
+// The same, testing only the elements the grid finds near the sweep (the same result as the
+// scan above; `candidates` is scratch reused between calls).
+std::vector<int> elements_crossed(const mesh::TetMesh& mesh, const double* u, const BladeSweep& sweep,
+                                  const ElementGrid& grid, std::vector<int>& candidates,
                                   const std::function<bool(int)>& skip = {});
 
 }  // namespace softsim::cutting

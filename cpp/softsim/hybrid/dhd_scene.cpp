@@ -103,12 +103,14 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
     for (const auto& c : config_.scene.constraints)
       for (int node : c.nodes) held_[node] = 1;
   }
+  if (!cut_grid_) cut_grid_ = std::make_unique<cutting::ElementGrid>(*mesh_);
   CutEvent ev;
   ev.time = s.time();
   ev.step = s.steps_done();
   const auto t0 = Clock::now();
   const std::vector<int> crossed =
-      cutting::elements_crossed(*mesh_, s.displacement(), sweep, [&](int e) { return elements_->removed(e); });
+      cutting::elements_crossed(*mesh_, s.displacement(), sweep, *cut_grid_, cut_candidates_,
+                                [&](int e) { return elements_->removed(e); });
   ev.search_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (crossed.empty()) {  // a sweep through cut space or beside the organ: nothing changes
     ev.pieces = cut_events_.empty() ? 1 : cut_events_.back().pieces;

@@ -99,6 +99,8 @@ class DhdScene {
   std::unique_ptr<fem::ElementSet> elements_;
   std::vector<CutEvent> cut_events_;
   std::vector<char> held_;  // per node: some constraint holds it (for loose pieces)
+  std::unique_ptr<cutting::ElementGrid> cut_grid_;  // built at the first cut: the blade's local search
+  std::vector<int> cut_candidates_;
   std::unique_ptr<dynamics::ExplicitSolver> solver_;
   double setup_seconds_ = 0;
 };
