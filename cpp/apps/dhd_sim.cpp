@@ -98,5 +98,11 @@ int main(int argc, char** argv) {
     }
     else
       std::cerr << "dhd_sim: static equilibrium in " << config.static_options.increments << " increments\n";
+    const hybrid::SmallStrainRecord& ss = run.small_strain;
+    if (ss.broken())
+      std::cerr << "dhd_sim: warning: small-strain element " << ss.element << " ("
+                << fem::kind_name(run.kinds[ss.element]) << ") reached a deformation of " << ss.largest << " at t = "
+                << ss.time << " s, beyond the " << hybrid::kSmallStrainLimit
+                << " under which 000 §2.2.2 takes such elements as valid (small_strain_check)\n";
   });
 }

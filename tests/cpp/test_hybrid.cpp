@@ -10,7 +10,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
+
+#include <Eigen/Geometry>
 
 #include "softsim/dynamics/node_selection.hpp"
 #include "softsim/dynamics/static_solver.hpp"
@@ -689,4 +692,107 @@ TEST(Output, DisplacementFieldIsWrittenUnlessTheConfigLeavesItOut) {
 
   j["output"]["displacement"] = "no";
   EXPECT_THROW(parse(j, m), InputError);
+}
+
+// ---- 000 §2.2.2's condition on small-strain elements (SmallStrainCheck) ----
+
+namespace {
+
+// u = (A − I) X at every node: the homogeneous deformation x = A X.
+std::vector<double> affine_field(const mesh::TetMesh& m, const Eigen::Matrix3d& A) {
+  std::vector<double> u(3 * m.num_nodes());
+  for (int a = 0; a < m.num_nodes(); ++a) {
+    const Eigen::Vector3d d = (A - Eigen::Matrix3d::Identity()) * m.nodes[a];
+    for (int k = 0; k < 3; ++k) u[3 * a + k] = d[k];
+  }
+  return u;
+}
+
+}  // namespace
+
+// A rigid rotation breaks a linear element (‖R − I‖₂ = 2 sin(θ/2)) and leaves a corotational
+// one untouched (E = 0); a uniform stretch λ gives λ − 1 and (λ² − 1)/2 respectively; TLED
+// and ANP elements are not watched.
+TEST(SmallStrainCheck, MeasuresFollowTheKindsHomogeneousDeformations) {
+  const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
+  const double theta = 0.5;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(theta, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d S = Eigen::Vector3d(1.05, 1.0, 1.0).asDiagonal();
+  auto check_all = [&](ElementKind kind, const Eigen::Matrix3d& A) {
+    hybrid::SmallStrainCheck c(m, std::vector<ElementKind>(m.num_tets(), kind));
+    c.observe(affine_field(m, A).data(), 0.25);
+    return c.record();
+  };
+  const auto lin_rot = check_all(ElementKind::linear, R);
+  EXPECT_NEAR(lin_rot.largest, 2 * std::sin(theta / 2), 1e-12);
+  EXPECT_TRUE(lin_rot.broken());
+  EXPECT_DOUBLE_EQ(lin_rot.time, 0.25);
+  EXPECT_EQ(lin_rot.elements, m.num_tets());
+  EXPECT_LT(check_all(ElementKind::corotational, R).largest, 1e-12);
+  EXPECT_NEAR(check_all(ElementKind::linear, S).largest, 0.05, 1e-12);
+  EXPECT_NEAR(check_all(ElementKind::corotational, S).largest, 0.5 * (1.05 * 1.05 - 1), 1e-12);
+  EXPECT_FALSE(check_all(ElementKind::linear, S).broken());
+  const auto tled = check_all(ElementKind::tled, R);
+  EXPECT_EQ(tled.elements, 0);
+  EXPECT_EQ(tled.element, -1);
+}
+
+// The bound that skips most eigenvalue solves changes nothing: the record equals the largest
+// of element_strain over the watched elements, found where it is, and removed elements are
+// left out.
+TEST(SmallStrainCheck, EqualsTheLargestElementStrainOfTheWatchedElements) {
+  const auto m = cuboid(4, 3, 3, 0.04, 0.03, 0.03);
+  std::vector<ElementKind> kinds(m.num_tets());
+  for (int e = 0; e < m.num_tets(); ++e) kinds[e] = static_cast<ElementKind>(e % fem::kNumElementKinds);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-2e-3, 2e-3);
+  std::vector<double> u(3 * m.num_nodes());
+  for (double& x : u) x = d(rng);
+  const auto dg = hybrid::element_strain(m, u, hybrid::StrainMeasure::displacement_gradient);
+  const auto gl = hybrid::element_strain(m, u, hybrid::StrainMeasure::green_lagrange);
+  for (int removed_every : {0, 3}) {
+    const auto removed = [&](int e) { return removed_every && e % removed_every == 0; };
+    double best = 0;
+    int where = -1;
+    for (int e = 0; e < m.num_tets(); ++e) {
+      if (removed(e)) continue;
+      const double s = kinds[e] == ElementKind::linear ? dg[e] : kinds[e] == ElementKind::corotational ? gl[e] : -1;
+      if (s > best) {
+        best = s;
+        where = e;
+      }
+    }
+    hybrid::SmallStrainCheck c(m, kinds);
+    c.observe(u.data(), 1.0, removed);
+    EXPECT_EQ(c.record().largest, best);
+    EXPECT_EQ(c.record().element, where);
+    EXPECT_GT(best, 0.05);
+  }
+}
+
+// A run reports the condition: a hybrid cuboid pressed by 1 % of its height keeps its linear
+// elements within it, pressed by 20 % it does not, and the artifact says which.
+TEST(SmallStrainCheck, ARunReportsTheLargestSmallStrainDeformation) {
+  const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
+  auto run_with = [&](double press) {
+    const nlohmann::json j = {
+        {"mesh", "m"},
+        {"partition", {{"linear_fraction", 0.5}}},
+        {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -press}}, {"ramp_time", 0.001}}}}}},
+        {"solver", {{"steps", 200}}}};
+    const auto c = parse(j, m);
+    const auto run = hybrid::run_dhd(m, c);
+    return std::make_pair(run.small_strain, hybrid::result_payload(m, c, run).at("small_strain_check"));
+  };
+  const auto [small, small_json] = run_with(0.0003);
+  EXPECT_FALSE(small.broken());
+  EXPECT_GT(small.largest, 0.0);
+  EXPECT_GT(small.samples, 2);
+  EXPECT_EQ(small_json.at("broken"), false);
+  EXPECT_EQ(small_json.at("kind"), "linear");
+  const auto [large, large_json] = run_with(0.006);
+  EXPECT_TRUE(large.broken());
+  EXPECT_EQ(large_json.at("broken"), true);
+  EXPECT_DOUBLE_EQ(large_json.at("largest").get<double>(), large.largest);
+  EXPECT_DOUBLE_EQ(large_json.at("limit").get<double>(), 0.10);
 }

@@ -17,6 +17,7 @@ double ExplicitSolver::external_work(const double* u_mid) const {
     }
   for (double x : dof_work_) w += x;
   for (double x : load_work_) w += x;
+  for (double x : contact_work_) w += x;
   return w;
 }
 

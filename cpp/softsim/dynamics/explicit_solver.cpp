@@ -85,6 +85,7 @@ ExplicitSolver::ExplicitSolver(fem::ElementSet& elements, std::vector<double> ma
     for (int k = 0; k < 3; ++k) probe_free_[k] = !mask[3 * scene_.probe.node + k];
   }
 
+  build_contacts(mask);
   element_ranges_ = elements_.balanced_ranges(opt_.threads);
   initial_scene_ = scene_;
   double total_mass = 0;
@@ -205,6 +206,10 @@ void ExplicitSolver::start() {
   applied_work_ = 0;
   gravity_ramp_work_ = 0;
   removed_energy_ = 0;
+  std::fill(contact_force_.begin(), contact_force_.end(), 0.0);
+  std::fill(contact_work_.begin(), contact_work_.end(), 0.0);
+  tool_force_samples_.assign(scene_.tools.size(), {});
+  tool_contact_samples_.assign(scene_.tools.size(), {});
   next_event_ = 0;
   n_done_ = 0;
   energies_.clear();
@@ -420,6 +425,7 @@ void ExplicitSolver::sample(const SnapshotFn& snapshot) {
     s.removed = removed_energy_;
     s.dissipated = initial_energy_ + s.external_work - s.kinetic - s.strain - s.removed;
     energies_.push_back(s);
+    if (!scene_.tools.empty()) record_tool_forces();
     const double mechanical = bound_kinetic + s.strain;
     // The conserved (half-step) kinetic energy cannot reveal an instability (it stays balanced
     // even while a mode grows), so the check uses the non-negative mean of the half-step
@@ -628,6 +634,8 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot, const ProgressFn&
   res.velocity.resize(n3);
   velocity(res.velocity.data());
   res.energies = energies_;
+  res.tool_force = tool_force_samples_;
+  res.tool_contacts = tool_contact_samples_;
   res.reactions = reactions();
   res.timing = timing();
   return res;

@@ -123,6 +123,10 @@ struct ExplicitResult {
   std::vector<double> probe_time;
   std::vector<Eigen::Vector3d> probe_force;  // spring force on the node
   std::vector<Eigen::Vector3d> reactions;    // per constraint: F_int − R at `time` (quasi-static)
+  // Per rigid tool (Scene::tools): the force the body exerts on it at each energy sample's time
+  // (energies[k].time), and how many of its nodes it touched then.
+  std::vector<std::vector<Eigen::Vector3d>> tool_force;
+  std::vector<std::vector<int>> tool_contacts;
   ExplicitTiming timing;
 };
 
@@ -216,6 +220,15 @@ class ExplicitSolver {
   CutReport remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements);
   double removed_energy() const { return removed_energy_; }
 
+  // ---- rigid tools (Scene::tools): frictionless kinematic contact (explicit_contact.cpp) ----
+  // Between steps: tool k's centre sits at `centre` from the next step on, its travel dropped
+  // (the haptic loop moves the tool this way).
+  void set_tool_position(int k, const Eigen::Vector3d& centre);
+  // The force the body exerts on tool k at the last step (minus the sum of the contact forces on
+  // its nodes), and how many of its nodes were in contact then.
+  Eigen::Vector3d tool_force(int k) const;
+  int tool_contacts(int k) const;
+
  private:
   struct LoadEntry {
     int node;
@@ -253,6 +266,11 @@ class ExplicitSolver {
   void set_node_coefficients(int i);
   StepSegment segment_at(int step) const;
   void fire_due_events();
+  void build_contacts(const std::vector<char>& constrained);
+  // After node i's update: moves it out of the tools it entered (see RigidTool) and books the
+  // contact work; `t_next` is the time of un.
+  void project_contacts(int i, int step, double t_next, const double* up, const double* uc, double* un);
+  void record_tool_forces();
   void check_step();
   std::string where(int step) const;
   [[noreturn]] void fail_step_size(int step, const double* u, const std::string& what) const;
@@ -298,6 +316,17 @@ class ExplicitSolver {
   std::vector<double> dof_work_, load_work_;
   std::vector<double> dof_force_;  // force of each moving constrained dof at the previous step
   double probe_work_ = 0;
+  // Rigid tools: per node, its contact entries (CSR over contacts_); per entry, the contact
+  // force on the node at the last step (3 values) and its work, booked trapezoidally like a load's.
+  struct ContactEntry {
+    int tool;
+    Eigen::Vector3d position;  // the node's reference position X
+  };
+  std::vector<int> contact_begin_;
+  std::vector<ContactEntry> contacts_;
+  std::vector<double> contact_force_, contact_work_;
+  std::vector<std::vector<Eigen::Vector3d>> tool_force_samples_;
+  std::vector<std::vector<int>> tool_contact_samples_;
   std::array<bool, 3> probe_free_ = {true, true, true};
   Eigen::Vector3d probe_previous_ = Eigen::Vector3d::Zero();
   // Applied forces (set_applied_forces): F per dof, dense so the node update reads it

@@ -48,6 +48,32 @@ struct ProbeSpring {
   Eigen::Vector3d tip_displacement(double t) const;
 };
 
+// A rigid tool in frictionless contact with the body (issue 23): a sphere, a capsule (a probe,
+// or a blade's back) or a plane, moved rigidly by `travel` × ramp(t) from where it starts, or
+// set between steps (the haptic loop's probe position). Contact is kinematic: after each
+// central-difference step a listed node that lies inside the tool is moved to the tool's surface
+// along the normal (the projection an explicit TLED code such as NiftySim applies), and the
+// force that move needs, M Δu / A (the central-difference coefficient of the node), is the
+// contact force. A projection adds no stiffness, so the stable step is the body's own.
+struct RigidTool {
+  enum class Shape { sphere, capsule, plane };
+  std::string name;
+  Shape shape = Shape::sphere;
+  double radius = 0;                                   // sphere, capsule (m)
+  Eigen::Vector3d half_axis = Eigen::Vector3d::Zero();  // capsule: from its centre to one end of its segment (m)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();    // plane: unit normal pointing out of the tool, into the body
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();      // centre (plane: a point on it) at t = 0 (m)
+  Eigen::Vector3d travel = Eigen::Vector3d::Zero();     // moved by travel × ramp(t) (m)
+  Ramp ramp;
+  std::vector<int> nodes;                     // the nodes it can touch (a surface), ascending
+  std::vector<Eigen::Vector3d> positions;     // their reference positions X (m)
+
+  Eigen::Vector3d centre(double t) const { return start + ramp.at(t) * travel; }
+  // Signed distance of x from the surface of the tool at `centre` (negative inside), and the
+  // unit normal pointing out of the tool at the nearest surface point.
+  double signed_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& centre, Eigen::Vector3d& normal) const;
+};
+
 struct Scene {
   std::vector<DisplacementConstraint> constraints;  // later entries override earlier ones per component
   std::vector<NodalLoad> loads;
@@ -57,6 +83,7 @@ struct Scene {
   Ramp gravity_ramp;
   bool has_probe = false;
   ProbeSpring probe;
+  std::vector<RigidTool> tools;
 };
 
 // One constrained degree of freedom: the last constraint naming (node, component) wins.

@@ -1,4 +1,5 @@
 #include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/hybrid/tool_config.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,15 @@ namespace softsim::hybrid {
 Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key) {
   const auto v = r.get_doubles(key, 3);
   return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+dynamics::Ramp read_ramp(const io::JsonReader& r) {
+  dynamics::Ramp ramp;
+  ramp.duration = r.get_double("ramp_time", 0.0);
+  r.require(ramp.duration >= 0, "ramp_time", "a non-negative time in seconds");
+  ramp.shape = r.get_choice("ramp", {"linear", "smooth"}, "linear") == "smooth" ? dynamics::Ramp::Shape::smooth
+                                                                               : dynamics::Ramp::Shape::linear;
+  return ramp;
 }
 
 namespace {
@@ -79,15 +89,6 @@ std::array<bool, 3> read_components(const io::JsonReader& r) {
   }
   if (!ok) r.at("components").fail("a non-empty subset of \"xyz\" without repeats");
   return c;
-}
-
-dynamics::Ramp read_ramp(const io::JsonReader& r) {
-  dynamics::Ramp ramp;
-  ramp.duration = r.get_double("ramp_time", 0.0);
-  r.require(ramp.duration >= 0, "ramp_time", "a non-negative time in seconds");
-  ramp.shape = r.get_choice("ramp", {"linear", "smooth"}, "linear") == "smooth" ? dynamics::Ramp::Shape::smooth
-                                                                               : dynamics::Ramp::Shape::linear;
-  return ramp;
 }
 
 void read_material(const io::JsonReader& cfg, DhdConfig& c) {
@@ -266,6 +267,7 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
     scene.probe.ramp = read_ramp(*probe);
     probe->reject_unknown();
   }
+  scene.tools = read_tools(*b, mesh);
   b->reject_unknown();
 }
 
@@ -395,6 +397,8 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   read_bench(cfg, mesh, c);
   c.cuts = read_cuts(cfg, mesh);
   if (!c.cuts.empty() && c.static_solver) cfg.fail_member("cuts", "an explicit solver (a cut is an event in time)");
+  if (!c.scene.tools.empty() && c.static_solver)
+    cfg.at("boundary").fail_member("tools", "an explicit solver (rigid-tool contact is solved by the explicit engine)");
   cfg.reject_unknown();
   return c;
 }

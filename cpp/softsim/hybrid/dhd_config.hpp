@@ -71,6 +71,9 @@ struct DhdConfig {
 
 // A 3-vector member [x, y, z] of a config object (the scene readers built on this one use it too).
 Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key);
+// "ramp_time" (s, default 0: full from the start) and "ramp" ("linear" or "smooth") of a load,
+// constraint, probe or tool.
+dynamics::Ramp read_ramp(const io::JsonReader& r);
 
 // The mesh path alone (the mesh must be loaded before the rest can be read): relative to the
 // config file's folder, or else to the working directory (io::JsonReader::get_input_path).

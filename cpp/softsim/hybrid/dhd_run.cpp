@@ -48,9 +48,19 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
     const auto t0 = std::chrono::steady_clock::now();
     run.static_result = scene.solve_static();
     run.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    SmallStrainCheck check(mesh, scene.kinds());
+    check.observe(run.static_result->displacement.data(), 0.0);
+    run.small_strain = check.record();
   } else {
     run.step = scene.step_choice();
-    run.explicit_result = scene.run(snapshot, progress);
+    SmallStrainCheck check(mesh, scene.kinds());
+    const auto removed = [&](int e) { return scene.removed(e); };
+    run.explicit_result = scene.run(snapshot, [&](int steps_done, double time) {
+      check.observe(scene.displacement(), time, removed);
+      if (progress) progress(steps_done, time);
+    });
+    check.observe(run.explicit_result->displacement.data(), run.explicit_result->time, removed);
+    run.small_strain = check.record();
     run.cuts = scene.cut_events();
     for (const auto& ev : run.cuts)
       run.removed_elements.insert(run.removed_elements.end(), ev.report.elements.begin(), ev.report.elements.end());
@@ -101,6 +111,16 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
   for (std::size_t i = 0; i < rs.size(); ++i)
     reactions.push_back({{"name", c.scene.constraints[i].name}, {"force", vec3(rs[i])}});
   p["reactions"] = reactions;
+  // 000 §2.2.2: small-strain elements are valid below 10 % deformation.
+  const SmallStrainRecord& ss = run.small_strain;
+  p["small_strain_check"] = {{"limit", kSmallStrainLimit},
+                             {"elements", ss.elements},
+                             {"samples", ss.samples},
+                             {"largest", ss.largest},
+                             {"element", ss.element},
+                             {"kind", ss.element >= 0 ? fem::kind_name(run.kinds[ss.element]) : ""},
+                             {"time", ss.time},
+                             {"broken", ss.broken()}};
 
   if (run.static_result) {
     const auto& s = *run.static_result;
@@ -151,6 +171,22 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
     if (!c.cuts.empty()) en["removed"].push_back(s.removed);
   }
   p["energies"] = en;
+  if (!c.scene.tools.empty()) {
+    // The force on each rigid tool at the energy samples' times (what a haptic device renders).
+    nlohmann::json tools = nlohmann::json::array();
+    static constexpr const char* kShape[] = {"sphere", "capsule", "plane"};
+    for (std::size_t k = 0; k < c.scene.tools.size(); ++k) {
+      nlohmann::json force = nlohmann::json::array();
+      for (const auto& f : r.tool_force[k]) force.push_back(vec3(f));
+      tools.push_back({{"name", c.scene.tools[k].name},
+                       {"shape", kShape[static_cast<int>(c.scene.tools[k].shape)]},
+                       {"nodes", c.scene.tools[k].nodes.size()},
+                       {"time", en["time"]},
+                       {"force", force},
+                       {"contacts", r.tool_contacts[k]}});
+    }
+    p["tools"] = tools;
+  }
   if (!c.cuts.empty()) {
     nlohmann::json cuts = nlohmann::json::array();
     for (const auto& ev : run.cuts)

@@ -13,6 +13,7 @@
 #include "softsim/dynamics/static_solver.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
+#include "softsim/hybrid/small_strain_check.hpp"
 
 namespace softsim::hybrid {
 
@@ -31,6 +32,9 @@ struct DhdRun {
   double solve_seconds = 0;  // static runs: wall time of solve_static (0 for explicit runs)
   std::vector<DhdScene::CutEvent> cuts;  // the cut events of the run (config "cuts")
   std::vector<int> removed_elements;     // every element the cuts removed, ascending
+  // The largest deformation of a small-strain element (000 §2.2.2's 10 % condition), over the
+  // states between chunks of explicit steps and the final one (static: the solution).
+  SmallStrainRecord small_strain;
 };
 
 // Throws InputError (bad step request, ...) or NumericalError (failure during the solve).

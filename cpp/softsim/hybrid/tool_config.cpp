@@ -1,0 +1,63 @@
+#include "softsim/hybrid/tool_config.hpp"
+
+#include <algorithm>
+
+#include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/mesh/surface.hpp"
+
+namespace softsim::hybrid {
+
+std::vector<dynamics::RigidTool> read_tools(const io::JsonReader& boundary, const mesh::TetMesh& mesh) {
+  std::vector<dynamics::RigidTool> tools;
+  auto list = boundary.optional("tools");
+  if (!list) return tools;
+  std::vector<int> surface;  // the boundary nodes, found once when a tool needs them
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const io::JsonReader t = (*list)[i];
+    dynamics::RigidTool tool;
+    const std::string shape = t.get_choice("shape", {"sphere", "capsule", "plane"});
+    tool.name = t.get_string("name", shape + "[" + std::to_string(i) + "]");
+    if (shape == "plane") {
+      tool.shape = dynamics::RigidTool::Shape::plane;
+      const Eigen::Vector3d n = read_vec3(t, "normal");
+      t.require(n.norm() > 0, "normal", "a non-zero normal (pointing out of the tool, into the body)");
+      tool.normal = n.normalized();
+    } else {
+      tool.shape = shape == "sphere" ? dynamics::RigidTool::Shape::sphere : dynamics::RigidTool::Shape::capsule;
+      tool.radius = t.get_positive("radius");
+      if (tool.shape == dynamics::RigidTool::Shape::capsule) {
+        const Eigen::Vector3d axis = read_vec3(t, "axis");
+        t.require(axis.norm() > 0, "axis", "a non-zero segment (from one end of the capsule's axis to the other)");
+        tool.half_axis = 0.5 * axis;
+      }
+    }
+    tool.start = read_vec3(t, "position");
+    tool.travel = t.has("travel") ? read_vec3(t, "travel") : Eigen::Vector3d::Zero();
+    tool.ramp = read_ramp(t);
+    if (t.has("nodes")) {
+      const std::string set = t.get_string("nodes");
+      const auto it = mesh.node_sets.find(set);
+      if (it == mesh.node_sets.end() || it->second.empty())
+        t.fail_member("nodes", "the name of a non-empty node set of the mesh");
+      tool.nodes = it->second;
+    } else {
+      if (surface.empty()) {
+        if (!mesh.boundary.empty()) {
+          surface = mesh::boundary_nodes(mesh);
+        } else {  // a mesh read without its surface: the faces used by one element
+          for (const auto& tri : mesh::extract_boundary(mesh, "mesh"))
+            surface.insert(surface.end(), tri.begin(), tri.end());
+          std::sort(surface.begin(), surface.end());
+          surface.erase(std::unique(surface.begin(), surface.end()), surface.end());
+        }
+      }
+      tool.nodes = surface;
+    }
+    for (int node : tool.nodes) tool.positions.push_back(mesh.nodes[node]);
+    t.reject_unknown();
+    tools.push_back(std::move(tool));
+  }
+  return tools;
+}
+
+}  // namespace softsim::hybrid
