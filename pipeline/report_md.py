@@ -4,7 +4,7 @@ import re
 from pipeline.artifacts import git_commit
 from pipeline.paths import RESULTS
 
-ORDER = ["mesh", "dhd", "validation", "rpim", "rpim_stiffness", "async", "haptic", "cutting", "stability", "bench"]
+ORDER = ["mesh", "dhd", "validation", "rpim", "rpim_stiffness", "rpim_liver", "async", "haptic", "cutting", "stability", "bench"]
 
 
 def provenance(manifest: dict, commit: str) -> str:
