@@ -80,7 +80,8 @@ def _model_rows(member, rpim_set):
     return [["mesh", f"{o['nodes']} nodes, {o['tets']} tets, {o['boundary_triangles']} boundary triangles"],
             ["surface nodes (reported, fitted)", o["surface_nodes"]],
             ["fixed nodes (sets " + ", ".join(o["fixed_sets"]) + ")", len(o["fixed_nodes"])],
-            ["loaded node (set " + o["loaded_set"] + ")", f"surface node {member['loaded_node']}"],
+            ["loaded node" + (f" (set {o['loaded_set']})" if o.get("loaded_set") else " (nearest the loaded point)"),
+             f"surface node {member['loaded_node']}"],
             ["material", f"E = {fmt(o['youngs_modulus'])} Pa, ν = {fmt(o['poisson_ratio'])}"],
             ["background integration", f"{o['tet_rule']['points']}-point tetrahedral rule (degree "
                                        f"{o['tet_rule']['degree']}), {o['gauss_points']} Gauss points"],

@@ -14,7 +14,14 @@ OrganScene read_organ_scene(const io::JsonReader& r) {
     s.fixed_sets.clear();
     for (std::size_t k = 0; k < sets.size(); ++k) s.fixed_sets.push_back(sets[k].as_string());
   }
-  s.loaded_set = r.get_string("loaded_set", s.loaded_set);
+  if (r.has("loaded_point")) {
+    r.require(!r.has("loaded_set"), "loaded_set", "either \"loaded_set\" or \"loaded_point\", not both");
+    const auto p = r.get_doubles("loaded_point", 3);
+    s.loaded_point = Eigen::Vector3d(p[0], p[1], p[2]);
+    s.loaded_set.clear();
+  } else {
+    s.loaded_set = r.get_string("loaded_set", s.loaded_set);
+  }
   s.youngs_modulus = r.get_positive("youngs_modulus", s.youngs_modulus);
   s.poisson_ratio = r.get_double("poisson_ratio", s.poisson_ratio);
   r.require(s.poisson_ratio > -1.0 && s.poisson_ratio < 0.5, "poisson_ratio", "a Poisson ratio in (-1, 0.5)");
@@ -37,7 +44,10 @@ nlohmann::json organ_scene_json(const OrganScene& s, const mesh::TetMesh& mesh, 
           {"surface_nodes", layout.reported_nodes.size()},
           {"surface_node_indices", layout.reported_nodes},
           {"fixed_sets", s.fixed_sets},
-          {"loaded_set", s.loaded_set},
+          {"loaded_set", s.loaded_point ? nlohmann::json(nullptr) : nlohmann::json(s.loaded_set)},
+          {"loaded_point", s.loaded_point ? nlohmann::json{s.loaded_point->x(), s.loaded_point->y(), s.loaded_point->z()}
+                                          : nlohmann::json(nullptr)},
+          {"loaded_node_index", layout.loaded_node_index},
           {"youngs_modulus", s.youngs_modulus},
           {"poisson_ratio", s.poisson_ratio},
           {"tet_rule", {{"points", s.tet_rule}, {"degree", rule.degree}}},

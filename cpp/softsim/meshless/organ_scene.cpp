@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "softsim/io/errors.hpp"
 #include "softsim/meshless/tet_quadrature.hpp"
@@ -69,17 +70,27 @@ SceneLayout organ_layout(const OrganScene& scene, const mesh::TetMesh& mesh) {
   if (l.reported_nodes.empty())
     throw ConfigInputError("/organ/mesh", "a mesh with boundary triangles (" + scene.mesh_path + " has none)");
   l.fixed_nodes = fixed_nodes(scene, mesh);
-  const auto& loaded = node_set(scene, mesh, scene.loaded_set, "/organ/loaded_set");
-  if (loaded.size() != 1)
-    throw ConfigInputError("/organ/loaded_set", "a node set of exactly one node (\"" + scene.loaded_set + "\" holds " +
-                                                    std::to_string(loaded.size()) + ")");
-  l.loaded_node_index = loaded.front();
+  const std::string pointer = scene.loaded_point ? "/organ/loaded_point" : "/organ/loaded_set";
+  if (scene.loaded_point) {
+    // The nearest surface node, the lowest index on ties.
+    double best = std::numeric_limits<double>::infinity();
+    for (int n : l.reported_nodes) {
+      const double d = (mesh.nodes[n] - *scene.loaded_point).norm();
+      if (d < best) best = d, l.loaded_node_index = n;
+    }
+  } else {
+    const auto& loaded = node_set(scene, mesh, scene.loaded_set, pointer);
+    if (loaded.size() != 1)
+      throw ConfigInputError(pointer, "a node set of exactly one node (\"" + scene.loaded_set + "\" holds " +
+                                          std::to_string(loaded.size()) + ")");
+    l.loaded_node_index = loaded.front();
+  }
   const auto pos = std::lower_bound(l.reported_nodes.begin(), l.reported_nodes.end(), l.loaded_node_index);
   if (pos == l.reported_nodes.end() || *pos != l.loaded_node_index)
-    throw ConfigInputError("/organ/loaded_set", "a surface node (node " + std::to_string(l.loaded_node_index) +
+    throw ConfigInputError(pointer, "a surface node (node " + std::to_string(l.loaded_node_index) +
                                                     " of \"" + scene.loaded_set + "\" is inside the mesh)");
   if (std::binary_search(l.fixed_nodes.begin(), l.fixed_nodes.end(), l.loaded_node_index))
-    throw ConfigInputError("/organ/loaded_set", "a node that no fixed set holds (node " +
+    throw ConfigInputError(pointer, "a node that no fixed set holds (node " +
                                                     std::to_string(l.loaded_node_index) + " is fixed)");
   l.loaded_node_number = static_cast<int>(pos - l.reported_nodes.begin()) + 1;
   l.body_force = scene.body_force;

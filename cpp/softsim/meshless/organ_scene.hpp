@@ -4,6 +4,7 @@
 // method"): the field nodes are the nodes of a tetrahedral organ mesh, the background
 // integration runs over its tetrahedra, penalty supports hold named node sets, and the forces
 // act on one surface node. Datasets report every surface node (the paper's 1986 on its liver).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,8 @@ namespace softsim::meshless {
 struct OrganScene {
   std::string mesh_path;                            // a tet_mesh artifact (mesher, dhd_node_sets)
   std::vector<std::string> fixed_sets{"fixed"};     // node sets held at zero by penalty
-  std::string loaded_set = "push";                  // a node set holding exactly one surface node
+  std::string loaded_set = "push";                  // a node set holding exactly one surface node,
+  std::optional<Eigen::Vector3d> loaded_point;      // or: the surface node nearest this point (m)
   double youngs_modulus = 0.32e6;                   // Pa (002 §4.1)
   double poisson_ratio = 0.49;
   int tet_rule = 4;                                 // Gauss points per tetrahedron: 1, 4 or 5
