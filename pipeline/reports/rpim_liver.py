@@ -239,6 +239,10 @@ def report(ctx):
             "[rpim_liver_vs_fem.md](rpim_liver_vs_fem.md), [rpim_liver_timing.md](rpim_liver_timing.md). "
             "Picture (Figs. 20–21): ![](rpim_liver.png)", ""]
     text.append(" ".join(finding(first["organ"]["surface_nodes"], paper.get("surface_nodes"), errors, fem, timing)))
+    text += ["", "How the fit covers a closed surface: marquardt_fit's surfaces are polynomials of x and y "
+             "(002 eq. 44; here the bivariate family, degree by cross-validation), evaluated at every surface "
+             "node, so nodes of the upper and lower faces with the same (x, y) receive the same value; the loaded "
+             "node takes relation 1's displacement (002 §5.1.1). The fit error above measures what that costs."]
     if statements:
         text += ["", "The paper's statements (002 §5.3, quoted):", ""] + [f"- paper: “{s}”" for s in statements]
     ctx.out("summary.md").write_text("\n".join(text) + "\n")
