@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace softsim::meshless {
 
@@ -24,7 +25,7 @@ TetRule tet_rule(int points) {
     r.weights = {-0.8, 0.45, 0.45, 0.45, 0.45};
     r.degree = 3;
   } else {
-    throw std::invalid_argument("tet_rule: 1, 4 or 5 points");
+    throw std::invalid_argument("tet_rule: 1, 4 or 5 points, not " + std::to_string(points));
   }
   return r;
 }
