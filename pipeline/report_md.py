@@ -4,7 +4,8 @@ import re
 from pipeline.artifacts import git_commit
 from pipeline.paths import RESULTS
 
-ORDER = ["mesh", "dhd", "validation", "rpim", "rpim_stiffness", "async", "haptic", "cutting", "contact", "stability", "bench"]
+ORDER = ["mesh", "dhd", "validation", "rpim", "rpim_stiffness", "rpim_liver", "async", "haptic", "cutting", "contact",
+         "stability", "bench"]
 
 
 def provenance(manifest: dict, commit: str) -> str:

@@ -72,8 +72,8 @@ nlohmann::json timing_json(const PlateRunTimings& t, int cases_solved) {
           {"threads", thread_count()}};
 }
 
-nlohmann::json dataset_payload(const PlateScene& scene, const RpimSettings& settings, const DatasetSpec& spec,
-                               const PlateRun& run, bool all_nodes) {
+nlohmann::json dataset_payload(const std::string& scene_key, const nlohmann::json& scene, const RpimSettings& settings,
+                               const DatasetSpec& spec, const SceneRun& run, bool all_nodes) {
   nlohmann::json payload;
   payload["dataset"] = {{"kind", dataset_kind_name(spec.kind)},
                         {"count", static_cast<int>(run.forces.size())},
@@ -82,10 +82,9 @@ nlohmann::json dataset_payload(const PlateScene& scene, const RpimSettings& sett
     payload["dataset"]["generator"] =
         "mt19937_64(seed); u = (w >> 11) * 2^-53; |F| = max_force u1, cos(theta) = 2 u2 - 1, phi = 2 pi u3";
   payload["dataset"]["max_force"] = spec.max_force;
-  nlohmann::json plate = plate_scene_json(scene);
-  plate["fixed_nodes"] = run.fixed_nodes;
-  plate["mean_spacing"] = run.mean_spacing;
-  payload["plate"] = plate;
+  payload[scene_key] = scene;
+  payload[scene_key]["fixed_nodes"] = run.fixed_nodes;
+  payload[scene_key]["mean_spacing"] = run.mean_spacing;
   payload["model"] = rpim_settings_json(settings, run.rbf, run.support, run.mean_spacing);
   payload["loaded_node"] = run.loaded_node_number;
   payload["loaded_node_index"] = run.loaded_node_index;

@@ -36,16 +36,24 @@ SupportRule resolve_support(const RpimSettings& settings, double mean_spacing) {
 RpimModel::RpimModel(const MeshlessProblem& problem, const RpimSettings& settings)
     : problem_(problem), solver_(settings.solver) {
   if (problem_.nodes.empty()) throw std::invalid_argument("RpimModel: no nodes");
-  spacing_ = problem_.mean_spacing > 0
-                 ? problem_.mean_spacing
-                 : std::cbrt(problem_.size.prod() / static_cast<double>(problem_.nodes.size()));
+  const bool given_points = !problem_.quadrature.points.empty();
+  double volume = problem_.size.prod();
+  if (given_points) {
+    volume = 0;
+    for (double w : problem_.quadrature.weights) volume += w;
+  }
+  spacing_ = problem_.mean_spacing > 0 ? problem_.mean_spacing
+                                       : std::cbrt(volume / static_cast<double>(problem_.nodes.size()));
   rbf_ = resolve_rbf(settings, spacing_);
   support_ = resolve_support(settings, spacing_);
   material_ = lame_from_young(problem_.youngs_modulus, problem_.poisson_ratio);
 
   auto t0 = std::chrono::steady_clock::now();
-  const QuadraturePoints quad = box_quadrature(problem_.origin, problem_.size, problem_.cells, problem_.gauss_order);
-  shapes_ = build_shape_table(problem_.nodes, quad, support_, rbf_);
+  shapes_ = build_shape_table(
+      problem_.nodes,
+      given_points ? problem_.quadrature
+                   : box_quadrature(problem_.origin, problem_.size, problem_.cells, problem_.gauss_order),
+      support_, rbf_);
   timings_.shape_functions_s = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();

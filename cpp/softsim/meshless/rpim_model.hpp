@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "softsim/meshless/assembly.hpp"
+#include "softsim/meshless/background_cells.hpp"
 #include "softsim/meshless/penalty.hpp"
 #include "softsim/meshless/rpim_shape.hpp"
 #include "softsim/meshless/shape_table.hpp"
@@ -43,13 +44,17 @@ struct RpimSettings {
 RbfParams resolve_rbf(const RpimSettings& settings, double mean_spacing);
 SupportRule resolve_support(const RpimSettings& settings, double mean_spacing);
 
-// Any box-shaped domain filled with nodes.
+// A domain filled with nodes: a box split into background cells (the plate), or any shape
+// whose Gauss points are given (an organ's tetrahedra, tet_quadrature.hpp).
 struct MeshlessProblem {
   std::vector<Eigen::Vector3d> nodes;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d size = Eigen::Vector3d::Ones();
   std::array<int, 3> cells{1, 1, 1};
   int gauss_order = 4;
+  // Non-empty: these points and weights replace the box cells (origin, size, cells, gauss_order
+  // unused), and the volume for the mean spacing is the sum of the weights.
+  QuadraturePoints quadrature;
   double youngs_modulus = 1.0;
   double poisson_ratio = 0.3;
   std::vector<NodeConstraint> constraints;

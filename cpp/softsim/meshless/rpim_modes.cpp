@@ -5,7 +5,10 @@
 #include <sstream>
 
 #include "softsim/io/limits.hpp"
+#include "softsim/io/mesh_artifact.hpp"
 #include "softsim/meshless/lee_radok.hpp"
+#include "softsim/meshless/organ_config.hpp"
+#include "softsim/meshless/plate_dataset.hpp"
 #include "softsim/meshless/result_json.hpp"
 #include "softsim/meshless/rpim_config.hpp"
 
@@ -33,7 +36,12 @@ nlohmann::json indentation_json(const IndentationInputs& in, double scene_modulu
 // latter builds and factors the plate once and writes an "rpim_dataset_set" whose members are
 // the payloads the single runs would write (timings aside).
 RpimOutput run_dataset(const io::JsonReader& cfg) {
+  // The scene: the paper's plate (002 §4.1) or an organ mesh (002 §5.3), not both.
+  const bool organ = cfg.has("organ");
+  if (organ && cfg.has("plate")) cfg.fail_member("organ", "either \"plate\" or \"organ\", not both");
   const PlateScene scene = read_plate_scene(cfg.optional("plate"));
+  std::optional<OrganScene> organ_scene;
+  if (organ) organ_scene = read_organ_scene(cfg.at("organ"));
   const RpimSettings settings = read_settings(cfg);
   const bool several = cfg.has("datasets");
   if (several && cfg.has("dataset"))
@@ -59,13 +67,28 @@ RpimOutput run_dataset(const io::JsonReader& cfg) {
   std::optional<IndentationInputs> indentation;
   if (const auto ind = cfg.optional("indentation")) indentation = read_indentation(*ind);
   cfg.reject_unknown();
+
+  MeshlessProblem problem;
+  SceneLayout layout;
+  nlohmann::json scene_json;
+  if (organ_scene) {
+    const mesh::TetMesh mesh = io::read_mesh_artifact(organ_scene->mesh_path);
+    layout = organ_layout(*organ_scene, mesh);
+    problem = organ_problem(*organ_scene, mesh);
+    scene_json = organ_scene_json(*organ_scene, mesh, layout);
+  } else {
+    problem = plate_problem(scene);
+    layout = plate_layout(scene);
+    scene_json = plate_scene_json(scene);
+  }
+  const double scene_modulus = problem.youngs_modulus;
   // Memory, estimated before anything is assembled: a dense factorisation holds the 3N x 3N
   // stiffness and its factor; every case writes 3 displacements of each node it reports as
   // JSON values and text (about 60 bytes a number).
-  const double nodes = static_cast<double>(scene.nodes[0]) * scene.nodes[1] * scene.nodes[2];
+  const double nodes = static_cast<double>(problem.nodes.size());
   if (settings.solver == SolverKind::dense_llt)
     io::require_memory("/solver", 2.0 * (3.0 * nodes) * (3.0 * nodes) * 8.0, "the dense stiffness and its factor");
-  const double reported = all_nodes ? nodes : static_cast<double>(scene.nodes[0]) * scene.nodes[1];
+  const double reported = all_nodes ? nodes : static_cast<double>(layout.reported_nodes.size());
   double cases_reported = 0;
   for (const auto& spec : specs) cases_reported += std::max(spec.count, 1);
   io::require_memory(several ? "/datasets" : "/dataset", cases_reported * reported * 3.0 * 60.0,
@@ -73,14 +96,14 @@ RpimOutput run_dataset(const io::JsonReader& cfg) {
 
   std::vector<std::vector<Eigen::Vector3d>> force_sets;
   for (const auto& spec : specs) force_sets.push_back(dataset_forces(spec));
-  const std::vector<PlateRun> runs = run_plate_sets(scene, settings, force_sets, stiffness_conditioning);
+  const std::vector<SceneRun> runs = run_scene_sets(problem, layout, settings, force_sets, stiffness_conditioning);
   std::vector<nlohmann::json> payloads;
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    payloads.push_back(dataset_payload(scene, settings, specs[k], runs[k], all_nodes));
-    if (indentation) payloads.back()["indentation"] = indentation_json(*indentation, scene.youngs_modulus);
+    payloads.push_back(dataset_payload(organ ? "organ" : "plate", scene_json, settings, specs[k], runs[k], all_nodes));
+    if (indentation) payloads.back()["indentation"] = indentation_json(*indentation, scene_modulus);
   }
 
-  const PlateRun& run = runs.front();
+  const SceneRun& run = runs.front();
   const int l = run.loaded_node_index;
   const double build_s = run.timings.total_s - run.timings.solves_s;
   double solves_s = 0;
