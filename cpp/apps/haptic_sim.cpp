@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   info.config_help =
       "  {\"model\": {a dhd_sim config with an explicit solver and no probe},\n"
       "   \"frame_rate\": 1000 Hz, \"frames\": 1000 (run),\n"
-      "   \"probe\": {\"stiffness\": N/m, \"contact\": \"grasp\"|\"push\"},\n"
+      "   \"probe\": {\"stiffness\": N/m, \"contact\": \"grasp\"|\"push\"} | {\"contact\": \"tool\", \"tool_offset\": [x,y,z]},\n"
       "   \"input\": {\"kind\": \"press\", \"start\": [x,y,z], \"direction\": [x,y,z], \"depth\": m, \"ramp_time\": s}\n"
       "            | {\"kind\": \"slide\", ... as press, \"slide_direction\": [x,y,z], \"speed\": m/s}\n"
       "            | {\"kind\": \"growing_sine\", \"start\", \"direction\", \"amplitude\": m, \"frequency\": Hz, \"growth_time\": s}\n"

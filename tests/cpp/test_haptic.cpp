@@ -136,6 +136,43 @@ TEST(HapticScene, PressAndHoldSettlesOnTheStaticSpringSolution) {
   EXPECT_GT(expected.z(), 0.1);  // the tool is pushed back up
 }
 
+// Contact "tool": a rigid plate (a plane tool over the top face) at the tip, pressed 3 mm and
+// held: with damping the force on the device settles on the static solution of the top face's z
+// displacement prescribed to the same depth (x and y free: the contact is frictionless), i.e.
+// minus that constraint's reaction on the body.
+TEST(HapticScene, ARigidToolAtTheTipSettlesOnTheStaticSolution) {
+  Block b;
+  const double depth = 0.003;
+  nlohmann::json j = {{"mesh", "unused"},
+                      {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                      {"damping", {{"alpha", 40.0}}},
+                      {"boundary",
+                       {{"fixed", {{{"set", "bottom"}}}},
+                        {"tools", {{{"shape", "plane"}, {"normal", {0, 0, -1}}, {"position", {0, 0, 1}}, {"nodes", "top"}}}}}},
+                      {"solver", {{"kind", "explicit"}}}};
+  const auto model = hybrid::read_dhd_config(io::JsonReader(j, "block.json"), *b.mesh);
+  haptic::HapticOptions opt;
+  opt.contact = haptic::ContactMode::tool;
+  haptic::HapticScene scene(b.mesh, model, opt);
+  const haptic::HapticRecord r = haptic::run_haptic(scene, press_down({0.05, 0.05, 0.05}, depth, 0.3), 3000);
+  ASSERT_TRUE(scene.events().empty());
+  EXPECT_TRUE(scene.in_contact());
+
+  dynamics::Scene s = b.config(0).scene;
+  dynamics::DisplacementConstraint top;
+  top.name = "top";
+  top.nodes = b.mesh->node_sets.at("top");
+  top.components = {false, false, true};
+  top.displacement = Eigen::Vector3d(0, 0, -depth);
+  s.constraints.push_back(top);
+  const auto kinds = std::vector<fem::ElementKind>(b.mesh->num_tets(), fem::ElementKind::tled);
+  const auto st = dynamics::solve_static(*b.mesh, kinds, b.config(0).material, s, dynamics::StaticOptions());
+  const Eigen::Vector3d expected = -st.reactions.back();  // on the tool = −(on the body)
+  EXPECT_GT(expected.z(), 0.1);                          // the tissue pushes the plate back up
+  EXPECT_LT((r.force.back() - expected).norm(), 1e-4 * expected.norm()) << r.force.back().transpose() << " vs "
+                                                                          << expected.transpose();
+}
+
 TEST(HapticScene, SlidingCrossesTrianglesWithoutAForceJump) {
   Block b;
   haptic::HapticScene scene(b.mesh, b.config(40), spring(100));

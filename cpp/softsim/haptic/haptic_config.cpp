@@ -83,8 +83,17 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
   const double rate = cfg.get_positive("frame_rate", 1000.0);
   c.options.frame_step = 1.0 / rate;
   const io::JsonReader probe = cfg.at("probe");
-  c.options.probe_stiffness = probe.get_positive("stiffness");
-  c.options.contact = probe.get_choice("contact", {"grasp", "push"}, "grasp") == "push" ? ContactMode::push : ContactMode::grasp;
+  const std::string contact = probe.get_choice("contact", {"grasp", "push", "tool"}, "grasp");
+  c.options.contact = contact == "push" ? ContactMode::push : contact == "tool" ? ContactMode::tool : ContactMode::grasp;
+  if (c.options.contact == ContactMode::tool) {
+    // The rigid tool's own contact makes the force: a coupling spring would be a second model of it.
+    if (probe.has("stiffness")) probe.fail_member("stiffness", "no stiffness with contact \"tool\" (the rigid tool's contact gives the force)");
+    if (probe.has("tool_offset")) c.options.tool_offset = read_vec3(probe, "tool_offset");
+    if (c.model.scene.tools.empty())
+      probe.fail_member("contact", "\"grasp\" or \"push\", or a model with a rigid tool (model.boundary.tools) for \"tool\"");
+  } else {
+    c.options.probe_stiffness = probe.get_positive("stiffness");
+  }
   probe.reject_unknown();
   if (const auto blade = cfg.optional("blade")) {
     c.options.blade = true;

@@ -85,7 +85,9 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
       {"substeps", scene.substeps()},
       {"dt", scene.dt()},
       {"probe_stiffness", scene.options().probe_stiffness},
-      {"contact_mode", scene.options().contact == ContactMode::push ? "push" : "grasp"},
+      {"contact_mode", scene.options().contact == ContactMode::push   ? "push"
+                       : scene.options().contact == ContactMode::tool ? "tool"
+                                                                      : "grasp"},
       {"frames", record.frames},
       {"time", record.time},
       {"probe", rows(record.probe)},

@@ -39,7 +39,10 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
                          const HapticOptions& options)
     : mesh_(mesh), options_(options), surface_(*mesh) {
   if (!(options.frame_step > 0)) throw InputError("haptic: frame step must be positive");
-  if (!(options.probe_stiffness > 0)) throw InputError("haptic: probe stiffness must be positive");
+  if (options.contact != ContactMode::tool && !(options.probe_stiffness > 0))
+    throw InputError("haptic: probe stiffness must be positive");
+  if (options.contact == ContactMode::tool && model.scene.tools.empty())
+    throw InputError("haptic: contact \"tool\" needs a rigid tool in the model (boundary.tools)");
   hybrid::DhdConfig c = with_frame_step(std::move(model), *mesh, options.frame_step);
   substeps_ = frame_substeps(options.frame_step, *c.explicit_solver.dt).substeps;
   model_ = std::make_unique<hybrid::DhdScene>(mesh, std::move(c));
@@ -111,6 +114,16 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
   const double k = options_.probe_stiffness;
   try {
     cut_with_blade(probe);
+    if (options_.contact == ContactMode::tool) {
+      // The instrument itself is the tip: the tool sits there for the frame's substeps, and the
+      // device receives the force the tissue exerts on it at the end of the frame.
+      model_->solver().set_tool_position(0, probe + options_.tool_offset);
+      model_->step(substeps_);
+      follow_cuts();
+      const Eigen::Vector3d f = model_->solver().tool_force(0);
+      in_contact_ = model_->solver().tool_contacts(0) > 0;
+      return f;
+    }
     update_contact(probe, model_->displacement());
     Eigen::Vector3d f = Eigen::Vector3d::Zero();  // on the tissue
     if (in_contact_) {

@@ -25,11 +25,16 @@ namespace softsim::haptic {
 enum class ContactMode {
   grasp,  // the tip holds the surface point it first touches (forceps): pulls as well as pushes
   push,   // unilateral: contact starts when the tip is below the surface, ends when it would pull
+  tool,   // the model's first rigid tool (boundary.tools) sits at the tip; the force the tissue
+          // exerts on it (frictionless contact with its surface nodes) goes to the device
 };
 
 struct HapticOptions {
   double frame_step = 1e-3;       // s (1 kHz)
-  double probe_stiffness = 100;   // k (N/m)
+  double probe_stiffness = 100;   // k (N/m); not used by ContactMode::tool
+  // ContactMode::tool: the tool's centre is at tip + tool_offset (e.g. [0, 0, R] puts a sphere's
+  // lowest point at a tip pressing down).
+  Eigen::Vector3d tool_offset = Eigen::Vector3d::Zero();
   ContactMode contact = ContactMode::grasp;
   // A blade on the tool: an edge from tip − blade_edge/2 to tip + blade_edge/2 that cuts,
   // each frame, the elements its sweep from the previous tip to the current one crosses.
