@@ -220,7 +220,7 @@ def closed_surface_note(fit, fit_xy):
     if uses_z(fit):
         note = f"How the fit covers a closed surface: its {xyz}."
         if fit_xy is not None and not uses_z(fit_xy):
-            note += f" The second fit's {xy}; the two rows of the fit table measure what that costs."
+            note += f" The second fit's {xy}; the fit table's rows of the two kinds measure what that costs."
     else:
         note = f"How the fit covers a closed surface: its {xy}; the fit error above measures what that costs."
     return note + " At the loaded node, the displacement along the force is relation 1's (002 §5.1.1)."
