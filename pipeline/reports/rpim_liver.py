@@ -2,11 +2,12 @@
 
 Inputs (experiments/rpim_liver.json): the liver mesh with its node sets (the dhd_liver mesh,
 fixed nodes and pushed node), the rpim_precompute dataset set on it (axis series, held-out random
-forces, the pressed and stretched cases), the marquardt_fit fit of its surface, and dhd_sim's
-linear static solve of the same mesh, fixed nodes, material and point force.
+forces, the pressed and stretched cases), the marquardt_fit fit of its surface (params `fit`; and
+optionally `fit_xy`, a fit of another surface kind shown beside it, e.g. x and y alone), and
+dhd_sim's linear static solve of the same mesh, fixed nodes, material and point force.
 
 Written: rpim_liver_model (scene, conditioning), rpim_liver_timing (build, per-case solve, fit,
-playback; the paper's run times beside them, labelled), rpim_liver_fit (fit against RPIM on the
+playback; the paper's run times beside them, labelled), rpim_liver_fit (each fit against RPIM on the
 held-out forces), rpim_liver_vs_fem (RPIM against dhd_sim at the loaded node and over the
 surface), rpim_liver.png (Figs. 20–21: the deformed surface coloured by displacement) and
 summary.md, whose sentences are written from the numbers.
@@ -40,6 +41,22 @@ def fit_errors(validation):
         out[name] = {"cases": v["cases"], "max": float(diff.max()), "rms": float(np.sqrt(np.mean(diff ** 2))),
                      "range": float(mag.max()), "loaded": float(loaded)}
     return out
+
+
+SURFACE_KINDS = {"trivariate": "x, y, z (trivariate)", "bivariate": "x, y (bivariate)",
+                 "separable": "x, y (separable, 002 eq. 44)", "best": "best of the kinds by CV"}
+
+
+def surface_kind(fit):
+    """What relation 2 of a fit is a polynomial of, with the degrees cross-validation chose
+    (from the fit's settings and selection), e.g. 'x, y, z (trivariate), n = 5–7'."""
+    model = (fit.get("settings") or {}).get("surface_model", "")
+    label = SURFACE_KINDS.get(model, model or "surface")
+    degrees = sorted({c["surface"]["degree"] for d in (fit.get("selection") or {}).values()
+                      for c in d.get("components", {}).values() if "degree" in c.get("surface", {})})
+    if degrees:
+        label += f", n = {degrees[0]}" + (f"–{degrees[-1]}" if degrees[-1] != degrees[0] else "")
+    return label
 
 
 def member_name(dataset_label):
@@ -153,7 +170,8 @@ def plot_cases(path, mesh, members, names):
 
 
 # --------------------------------------------------------------------------- words
-def finding(surface_nodes, paper_nodes, errors, fem, timing):
+def finding(surface_nodes, paper_nodes, errors, fem, timing, kinds=None, other=None):
+    """kinds: (label of the fit, label of the other fit); other: the other fit's errors."""
     out = []
     out.append(f"The liver has {surface_nodes} surface nodes (the paper's liver: {paper_nodes}); every one of them "
                "is an RPIM field node, reported in each load case and covered by the fit.")
@@ -163,9 +181,19 @@ def finding(surface_nodes, paper_nodes, errors, fem, timing):
         verdict = (f"follows the RPIM field within {GOOD_FIT:.0%} of the displacement range"
                    if rel < GOOD_FIT else
                    f"does not follow the RPIM field within {GOOD_FIT:.0%} of the displacement range")
-        out.append(f"On {held['cases']} held-out random forces (0–1 N) the fitted surface {verdict}: max error "
+        which = f" ({kinds[0]})" if kinds else ""
+        out.append(f"On {held['cases']} held-out random forces (0–1 N) the fitted surface{which} {verdict}: max error "
                    f"{fmt(held['max'] * MM)} mm, RMS {fmt(held['rms'] * MM)} mm, against displacements up to "
                    f"{fmt(held['range'] * MM)} mm ({fmt(rel * 100, 3)} % max, {fmt(held['rms'] / held['range'] * 100, 3)} % RMS).")
+        prev = (other or {}).get("random")
+        if prev and kinds:
+            def than(a, b):
+                return (f"{fmt(b / a, 3)} × smaller" if a < b else
+                        f"{fmt(a / b, 3)} × larger" if a > b else "the same")
+            out.append(f"The surfaces of {kinds[1]} on the same forces: max error {fmt(prev['max'] * MM)} mm, RMS "
+                       f"{fmt(prev['rms'] * MM)} mm ({fmt(prev['max'] / prev['range'] * 100, 3)} % max, "
+                       f"{fmt(prev['rms'] / prev['range'] * 100, 3)} % RMS); against them the fitted surface above has a "
+                       f"max error {than(held['max'], prev['max'])} and an RMS {than(held['rms'], prev['rms'])}.")
     for name, c in fem.items():
         close = c["surface_rms"] / c["fem_max"] < CLOSE_FEM
         word = "agrees with" if close else "differs from"
@@ -182,6 +210,22 @@ def finding(surface_nodes, paper_nodes, errors, fem, timing):
     return out
 
 
+def closed_surface_note(fit, fit_xy):
+    """How the fit(s) cover a closed surface, from the surface kinds they used."""
+    def uses_z(f):
+        return (f.get("settings") or {}).get("surface_model") == "trivariate"
+    xy = "polynomials of x and y (002 eq. 44) give nodes of the upper and lower faces with the same (x, y) " \
+         "the same value"
+    xyz = "polynomials of x, y and z (the trivariate surface) give every surface node its own value"
+    if uses_z(fit):
+        note = f"How the fit covers a closed surface: its {xyz}."
+        if fit_xy is not None and not uses_z(fit_xy):
+            note += f" The second fit's {xy}; the fit table's rows of the two kinds measure what that costs."
+    else:
+        note = f"How the fit covers a closed surface: its {xy}; the fit error above measures what that costs."
+    return note + " At the loaded node, the displacement along the force is relation 1's (002 §5.1.1)."
+
+
 # --------------------------------------------------------------------------- report
 def report(ctx):
     p = ctx.params
@@ -190,6 +234,7 @@ def report(ctx):
     rpim_set = ctx.runs(p["rpim"])[0].payload
     members = rpim_set["members"]
     fit = ctx.runs(p["fit"])[0].payload
+    fit_xy = ctx.runs(p["fit_xy"])[0].payload if p.get("fit_xy") else None
     fem_runs = ctx.runs(p["fem"])
     first = next(iter(members.values()))
 
@@ -197,14 +242,20 @@ def report(ctx):
                 "The RPIM liver (002 §5.3): field nodes = the tetrahedral mesh's nodes, Gauss points in its tetrahedra.")
 
     errors = fit_errors(fit.get("validation", []))
-    rows = [[name, e["cases"], fmt(e["max"] * MM), fmt(e["rms"] * MM), fmt(e["range"] * MM),
+    fits = [(surface_kind(fit), errors)]
+    other = None
+    if fit_xy is not None:
+        other = fit_errors(fit_xy.get("validation", []))
+        fits.append((surface_kind(fit_xy), other))
+    rows = [[kind, name, e["cases"], fmt(e["max"] * MM), fmt(e["rms"] * MM), fmt(e["range"] * MM),
              fmt(e["max"] / e["range"] * 100, 3), fmt(e["rms"] / e["range"] * 100, 3), fmt(e["loaded"] * MM)]
-            for name, e in errors.items()]
+            for kind, errs in fits for name, e in errs.items()]
     write_table(ctx, "rpim_liver_fit",
-                ["forces", "cases", "max |u_fit − u_RPIM| (mm)", "RMS (mm)", "largest |u_RPIM| (mm)",
-                 "max / range (%)", "RMS / range (%)", "loaded node max error (mm)"], rows,
-                "The Marquardt fit (trained on the axis series only) played back against the RPIM solution, every "
-                "surface node; 'random' are held-out forces 0–1 N.")
+                ["surface (relation 2)", "forces", "cases", "max |u_fit − u_RPIM| (mm)", "RMS (mm)",
+                 "largest |u_RPIM| (mm)", "max / range (%)", "RMS / range (%)", "loaded node max error (mm)"], rows,
+                "The Marquardt fits (trained on the axis series only) played back against the RPIM solution, every "
+                "surface node; 'random' are held-out forces 0–1 N. Relation 2 is a polynomial of the coordinates "
+                "named, its degree n chosen by cross-validation per load direction and component.")
 
     fem = {}
     for name, force in p["cases"].items():
@@ -238,11 +289,10 @@ def report(ctx):
             "Tables: [rpim_liver_model.md](rpim_liver_model.md), [rpim_liver_fit.md](rpim_liver_fit.md), "
             "[rpim_liver_vs_fem.md](rpim_liver_vs_fem.md), [rpim_liver_timing.md](rpim_liver_timing.md). "
             "Picture (Figs. 20–21): ![](rpim_liver.png)", ""]
-    text.append(" ".join(finding(first["organ"]["surface_nodes"], paper.get("surface_nodes"), errors, fem, timing)))
-    text += ["", "How the fit covers a closed surface: marquardt_fit's surfaces are polynomials of x and y "
-             "(002 eq. 44; here the bivariate family, degree by cross-validation), evaluated at every surface "
-             "node, so nodes of the upper and lower faces with the same (x, y) receive the same value; the loaded "
-             "node takes relation 1's displacement (002 §5.1.1). The fit error above measures what that costs."]
+    kinds = (fits[0][0], fits[1][0]) if len(fits) > 1 else None
+    text.append(" ".join(finding(first["organ"]["surface_nodes"], paper.get("surface_nodes"), errors, fem, timing,
+                                 kinds, other)))
+    text += ["", closed_surface_note(fit, fit_xy)]
     if statements:
         text += ["", "The paper's statements (002 §5.3, quoted):", ""] + [f"- paper: “{s}”" for s in statements]
     ctx.out("summary.md").write_text("\n".join(text) + "\n")

@@ -686,3 +686,188 @@ TEST(StaticSeries, TakesTheTopFaceInGridOrderAndTheNearestLoadedNode) {
   EXPECT_THROW(read_static_series(s), InputError);
   std::filesystem::remove_all(dir);
 }
+
+// ---------------------------------------------------------------- trivariate surfaces
+
+namespace {
+
+// Nodes on a closed, bumpy surface around (0.1, 0.05, 0.02) m, about 60 mm across: every (x, y)
+// inside is covered by an upper and a lower node, as on an organ. The radius varies with both
+// angles so that the nodes lie on no low-degree algebraic surface (on a sphere, x² + y² + z² is
+// constant and a trivariate design of degree ≥ 2 would be singular).
+Eigen::MatrixXd closed_surface_nodes() {
+  constexpr int kRings = 14, kPerRing = 20;
+  Eigen::MatrixXd nodes(kRings * kPerRing + 2, 3);
+  const Eigen::Vector3d centre(0.1, 0.05, 0.02);
+  int r = 0;
+  auto put = [&](double theta, double phi) {
+    const double rho = 0.03 * (1.0 + 0.25 * std::cos(3.0 * theta) * std::sin(2.0 * phi) + 0.15 * std::cos(5.0 * phi));
+    nodes.row(r++) = centre + rho * Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                                     0.6 * std::cos(theta));
+  };
+  put(0.0, 0.0);
+  put(M_PI, 0.0);
+  for (int i = 1; i <= kRings; ++i)
+    for (int k = 0; k < kPerRing; ++k) put(M_PI * i / (kRings + 1), 2.0 * M_PI * (k + 0.5 * (i % 2)) / kPerRing);
+  return nodes;
+}
+
+// Response to a unit force along d (m per N): trivariate polynomials of total degree 3 (m/N) in
+// the coordinates relative to the centre, in units of 30 mm, with x–z, y–z and z³ terms, so
+// that the upper and lower nodes over one (x, y) move differently.
+double organ_field(int d, int c, double x, double y, double z) {
+  const double s = (x - 0.1) / 0.03, t = (y - 0.05) / 0.03, w = (z - 0.02) / 0.03;
+  const double amp = 1e-3 * (1.0 + d + 0.5 * c);
+  return amp * (0.2 - 0.4 * s + 0.3 * w + 0.5 * s * w - 0.6 * t * w + 0.2 * w * w * w - 0.3 * s * s * t +
+                0.1 * (d - c) * t * t * w);
+}
+
+Dataset organ_dataset(int d, int cases) {
+  Dataset ds;
+  ds.source = std::string("synthetic_organ_") + "xyz"[d];
+  ds.kind = std::string("axis_") + "xyz"[d];
+  ds.nodes = closed_surface_nodes();
+  ds.loaded_node = 7;
+  ds.unit_solutions = Eigen::MatrixXd(3 * ds.nodes.rows(), 3);
+  for (Eigen::Index j = 0; j < ds.nodes.rows(); ++j)
+    for (int c = 0; c < 3; ++c)
+      for (int e = 0; e < 3; ++e)
+        (*ds.unit_solutions)(3 * j + c, e) = organ_field(e, c, ds.nodes(j, 0), ds.nodes(j, 1), ds.nodes(j, 2));
+  for (int i = 1; i <= cases; ++i) {
+    LoadCase lc;
+    lc.force[d] = static_cast<double>(i) / cases;
+    lc.displacement = Eigen::MatrixXd(ds.nodes.rows(), 3);
+    for (Eigen::Index j = 0; j < ds.nodes.rows(); ++j)
+      for (int c = 0; c < 3; ++c) lc.displacement(j, c) = lc.force[d] * (*ds.unit_solutions)(3 * j + c, d);
+    ds.cases.push_back(lc);
+  }
+  return ds;
+}
+
+SurfaceFrame organ_frame(const Eigen::MatrixXd& nodes) {
+  SurfaceFrame frame;
+  frame.x = AffineScale::from_range(nodes.col(0).minCoeff(), nodes.col(0).maxCoeff());
+  frame.y = AffineScale::from_range(nodes.col(1).minCoeff(), nodes.col(1).maxCoeff());
+  frame.z = AffineScale::from_range(nodes.col(2).minCoeff(), nodes.col(2).maxCoeff());
+  return frame;
+}
+
+}  // namespace
+
+TEST(TrivariateSurface, TermsAreTheFullTrivariateBasisWithTheBivariateOnesFirstInEachDegree) {
+  const SurfaceTerms t = SurfaceTerms::trivariate(4, 4);
+  EXPECT_EQ(t.size(), 35);  // C(4 + 3, 3)
+  const SurfaceTerms flat = SurfaceTerms::trivariate(4, 0);
+  const SurfaceTerms biv = SurfaceTerms::bivariate(4);
+  ASSERT_EQ(flat.size(), biv.size());
+  for (int k = 0; k < biv.size(); ++k) EXPECT_EQ(flat.terms[k], biv.terms[k]) << "term " << k;
+  EXPECT_FALSE(flat.uses_z());
+  EXPECT_TRUE(t.uses_z());
+}
+
+TEST(TrivariateSurface, LevenbergMarquardtRecoversAKnownPolynomialExactly) {
+  const Eigen::MatrixXd nodes = closed_surface_nodes();
+  ASSERT_TRUE(nodes_span_z(nodes));
+  const SurfaceFrame frame = organ_frame(nodes);
+  Eigen::MatrixXd values(nodes.rows(), 2);
+  for (Eigen::Index j = 0; j < nodes.rows(); ++j)
+    for (int c = 0; c < 2; ++c) values(j, c) = organ_field(c, 2, nodes(j, 0), nodes(j, 1), nodes(j, 2));
+  FitOptions opt;
+  FitSummary summary;
+  const SurfaceTerms terms = SurfaceTerms::trivariate(3, 3);
+  const Eigen::MatrixXd coef = fit_surfaces(terms, frame, nodes, values, opt, "trivariate", &summary);
+  EXPECT_EQ(summary.parameters, 20);
+  EXPECT_LT(summary.condition, 1e8);
+  // The fitted polynomial is the true one everywhere, not only at the nodes: compare inside the box.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd probe(50, 3);
+  for (Eigen::Index r = 0; r < probe.rows(); ++r)
+    probe.row(r) << 0.1 + 0.03 * u(rng), 0.05 + 0.03 * u(rng), 0.02 + 0.02 * u(rng);
+  const Eigen::MatrixXd fitted = surface_design(terms, frame, probe) * coef;
+  const double scale = values.cwiseAbs().maxCoeff();
+  for (Eigen::Index r = 0; r < probe.rows(); ++r)
+    for (int c = 0; c < 2; ++c)
+      EXPECT_NEAR(fitted(r, c), organ_field(c, 2, probe(r, 0), probe(r, 1), probe(r, 2)), 1e-11 * scale);
+  // A surface of x and y alone cannot tell the upper from the lower nodes: even degree 8 misses.
+  FitSummary flat;
+  fit_surfaces(SurfaceTerms::bivariate(8), frame, nodes, values, opt, "bivariate", &flat);
+  EXPECT_GT(flat.rmse, 1e-2 * scale);
+}
+
+TEST(TrivariateSurface, OnAPlaneZEqualsConstItIsTheBivariateFit) {
+  const Eigen::MatrixXd nodes = plate_nodes();  // every node at z = 6 mm
+  ASSERT_FALSE(nodes_span_z(nodes));
+  SurfaceFrame frame;
+  frame.x = AffineScale::from_range(0.0, 0.048);
+  frame.y = AffineScale::from_range(0.0, 0.048);
+  frame.z = AffineScale::from_range(0.006, 0.006);
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> noise(0.0, 1e-5);
+  Eigen::MatrixXd values(nodes.rows(), 2);
+  for (Eigen::Index j = 0; j < nodes.rows(); ++j)
+    for (int c = 0; c < 2; ++c) values(j, c) = unit_field(1, c, nodes(j, 0), nodes(j, 1)) + noise(rng);
+  FitOptions opt;
+  for (int n = 0; n <= 6; ++n) {
+    const Eigen::MatrixXd tri = fit_surfaces(SurfaceTerms::trivariate(n, 0), frame, nodes, values, opt, "trivariate");
+    const Eigen::MatrixXd biv = fit_surfaces(SurfaceTerms::bivariate(n), frame, nodes, values, opt, "bivariate");
+    EXPECT_EQ(tri, biv) << "degree " << n;
+  }
+  // Keeping the z terms there would repeat the constant ones: refused, not silently solved.
+  EXPECT_THROW(fit_surfaces(SurfaceTerms::trivariate(2, 2), frame, nodes, values, opt, "trivariate"), NumericalError);
+  // The whole fit with surface_model "trivariate" is then the bivariate one.
+  std::array<Dataset, 3> data;
+  for (int d = 0; d < 3; ++d) data[d] = axis_dataset(d, 6);
+  FitSettings tri_settings = small_settings(), biv_settings = small_settings();
+  tri_settings.surface_choice = SurfaceChoice::trivariate;
+  tri_settings.limits.trivariate = 4;
+  biv_settings.surface_choice = SurfaceChoice::bivariate;
+  const FitResult tri = fit_surface_model({&data[0], &data[1], &data[2]}, tri_settings, false);
+  const FitResult biv = fit_surface_model({&data[0], &data[1], &data[2]}, biv_settings, false);
+  for (int d = 0; d < 3; ++d)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(tri.model.directions[d].components[c].surface.degree, biv.model.directions[d].components[c].surface.degree);
+      EXPECT_EQ(tri.model.directions[d].components[c].beta, biv.model.directions[d].components[c].beta) << d << c;
+    }
+}
+
+TEST(TrivariateSurface, FitOfALinearOrganPlaysBackExactlyWithoutAllocating) {
+  std::array<Dataset, 3> data;
+  for (int d = 0; d < 3; ++d) data[d] = organ_dataset(d, 6);
+  FitSettings s = small_settings();
+  s.surface_choice = SurfaceChoice::trivariate;
+  s.limits.trivariate = 5;
+  const FitResult result = fit_surface_model({&data[0], &data[1], &data[2]}, s, false);
+  for (int d = 0; d < 3; ++d)
+    for (int c = 0; c < 3; ++c) {
+      const SurfaceTerms& t = result.model.directions[d].components[c].surface;
+      EXPECT_EQ(t.model, SurfaceModel::trivariate);
+      EXPECT_EQ(t.degree, 3) << d << c;  // the true degree, chosen by cross-validation
+      EXPECT_EQ(t.z_degree, 3) << d << c;
+    }
+  // Composite forces of the linear body, through the JSON round trip of the model.
+  const FitModel model = model_from_json(io::JsonReader(model_to_json(result.model), "model.json"));
+  const SurfacePlayer player(model);
+  const Eigen::MatrixXd& nodes = data[0].nodes;
+  const Eigen::MatrixXd& U = *data[0].unit_solutions;
+  Eigen::VectorXd out(3 * player.node_count());
+  for (const Eigen::Vector3d f : {Eigen::Vector3d(0.9, -0.7, -0.22), Eigen::Vector3d(0.0, 0.3, 1.0)}) {
+    player.play(f, out.data());
+    const Eigen::VectorXd exact = U * f;
+    const Eigen::MatrixXd direct = evaluate_direct(model, f);
+    const double scale = exact.cwiseAbs().maxCoeff();
+    for (Eigen::Index j = 0; j < nodes.rows(); ++j)
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(out[3 * j + c], exact[3 * j + c], 1e-9 * scale);
+        EXPECT_NEAR(out[3 * j + c], direct(j, c), 1e-13 * scale);
+      }
+  }
+#if defined(SOFTSIM_COUNTS_ALLOCATIONS)
+  const Eigen::Vector3d f(0.4, 0.5, -0.6);
+  g_allocations = 0;
+  g_count_allocations = true;
+  for (int k = 0; k < 100; ++k) player.play(f, out.data());
+  g_count_allocations = false;
+  EXPECT_EQ(g_allocations, 0);
+#endif
+}

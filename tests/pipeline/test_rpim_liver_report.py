@@ -1,5 +1,6 @@
-"""The RPIM liver report (results/rpim_liver/): errors read from the fit's full fields, RPIM
-against dhd_sim on the surface nodes, and a summary whose verdicts follow the numbers."""
+"""The RPIM liver report (results/rpim_liver/): errors read from the fits' full fields, RPIM
+against dhd_sim on the surface nodes, and a summary whose verdicts follow the numbers (also when
+a second fit of another surface kind stands beside the first)."""
 import numpy as np
 import pytest
 
@@ -40,11 +41,18 @@ def validation(fit_error):
             "examples": [{"force": [0, 0, -1], "fit": fitted, "data": data}]}
 
 
-def context(tmp_path, fit_error=1e-5, fem_scale=0.01):
+def fit_payload(fit_error, model, degrees):
+    selection = {d: {"components": {c: {"surface": {"model": model, "degree": n}} for c, n in zip("xyz", degrees)}}
+                 for d in "xyz"}
+    return {"validation": [validation(fit_error)], "fit_seconds": 0.5, "settings": {"surface_model": model},
+            "selection": selection,
+            "timing": {"playback_s_per_evaluation": 2e-6, "superposition_s_per_evaluation": 1e-5}}
+
+
+def context(tmp_path, fit_error=1e-5, fem_scale=0.01, xy_error=None):
     members = {"pressed": member([0, 0, -1], field(0.01)), "stretched": member([0.6, 0, 0.8], field(-0.01))}
     rpim_set = {"members": members, "timing": {"build_s": 2.0, "solves_s": 0.2, "cases_solved": 10}}
-    fit = {"validation": [validation(fit_error)], "fit_seconds": 0.5,
-           "timing": {"playback_s_per_evaluation": 2e-6, "superposition_s_per_evaluation": 1e-5}}
+    fit = fit_payload(fit_error, "trivariate", [5, 7, 6])
 
     def fem(force, s):
         u = [[0.0, 0.0, 0.0]] * 5
@@ -56,6 +64,9 @@ def context(tmp_path, fit_error=1e-5, fem_scale=0.01):
             "fem": [fem([0, 0, -1], fem_scale), fem([0.6, 0, 0.8], -fem_scale)]}
     params = {"sets": "sets", "rpim": "rpim", "fit": "fit", "fem": "fem",
               "cases": {"pressed": [0, 0, -1], "stretched": [0.6, 0, 0.8]}}
+    if xy_error is not None:
+        runs["fit_xy"] = [run(fit_payload(xy_error, "bivariate", [8, 8, 8]))]
+        params["fit_xy"] = "fit_xy"
     paper = {"surface_nodes": 1986, "statements": ["In the liver model, there are 1986 surface nodes"],
              "timing": {"rpim_solve_s": 647.4073, "playback_s": 0.1509}}
     return FakeContext(tmp_path, runs=runs, params=params, experiment={"paper": paper})
@@ -64,10 +75,11 @@ def context(tmp_path, fit_error=1e-5, fem_scale=0.01):
 def test_tables_follow_the_fields(tmp_path):
     rpim_liver.report(context(tmp_path, fit_error=2e-4, fem_scale=0.02))
     fit = read_csv(tmp_path / "rpim_liver_fit.csv")
-    assert fit[1][0] == "random"
-    assert float(fit[1][2]) == pytest.approx(0.2)       # max |Δu| (mm)
-    assert float(fit[1][4]) == pytest.approx(10.0)      # largest |u_RPIM| (mm)
-    assert float(fit[1][5]) == pytest.approx(2.0)       # %
+    assert fit[1][0] == "x, y, z (trivariate), n = 5–7"  # the kind and the degrees CV chose
+    assert fit[1][1] == "random"
+    assert float(fit[1][3]) == pytest.approx(0.2)       # max |Δu| (mm)
+    assert float(fit[1][5]) == pytest.approx(10.0)      # largest |u_RPIM| (mm)
+    assert float(fit[1][6]) == pytest.approx(2.0)       # %
     fem = read_csv(tmp_path / "rpim_liver_vs_fem.csv")
     pressed = [r for r in fem if r[0] == "pressed"][0]
     assert float(pressed[4]) == pytest.approx(0.5)      # loaded node |u| RPIM / FEM = 10 / 20
@@ -101,3 +113,21 @@ def test_too_few_full_fields_is_an_error(tmp_path):
     ctx.runs("fit")[0].payload["validation"][0]["cases"] = 5
     with pytest.raises(ValueError, match="examples"):
         rpim_liver.report(ctx)
+
+
+def test_a_second_fit_stands_beside_the_first_and_the_comparison_follows_the_numbers(tmp_path):
+    rpim_liver.report(context(tmp_path / "better", fit_error=1e-4, xy_error=4e-4))
+    fit = read_csv(tmp_path / "better" / "rpim_liver_fit.csv")
+    assert [r[0] for r in fit[1:]] == ["x, y, z (trivariate), n = 5–7", "x, y (bivariate), n = 8"]
+    assert float(fit[2][3]) == pytest.approx(0.4)
+    text = (tmp_path / "better" / "summary.md").read_text()
+    assert "the fitted surface (x, y, z (trivariate), n = 5–7) follows the RPIM field within 5%" in text
+    assert "The surfaces of x, y (bivariate), n = 8 on the same forces: max error 0.4 mm" in text
+    assert "max error 4 × smaller and an RMS 4 × smaller" in text
+    assert "its polynomials of x, y and z" in text and "The second fit's polynomials of x and y" in text
+    rpim_liver.report(context(tmp_path / "worse", fit_error=4e-4, xy_error=1e-4))
+    text = (tmp_path / "worse" / "summary.md").read_text()
+    assert "max error 4 × larger and an RMS 4 × larger" in text
+    # Without a second fit there is no comparison sentence.
+    rpim_liver.report(context(tmp_path / "alone"))
+    assert "The surfaces of" not in (tmp_path / "alone" / "summary.md").read_text()

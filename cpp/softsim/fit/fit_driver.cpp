@@ -1,5 +1,6 @@
 #include "softsim/fit/fit_driver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -12,6 +13,7 @@ const char* to_string(SurfaceChoice choice) {
   switch (choice) {
     case SurfaceChoice::separable: return "separable";
     case SurfaceChoice::bivariate: return "bivariate";
+    case SurfaceChoice::trivariate: return "trivariate";
     case SurfaceChoice::best: return "best";
   }
   return "unknown";
@@ -141,7 +143,8 @@ class SurfaceCvCache {
       : frame_(frame), xy_(xy), options_(options) {}
 
   CvScore score(const SurfaceTerms& terms, const Eigen::MatrixXd& values) {
-    const std::tuple<SurfaceModel, int, int, int> key{terms.model, terms.order_x, terms.order_y, terms.degree};
+    const std::tuple<SurfaceModel, int, int, int, int> key{terms.model, terms.order_x, terms.order_y, terms.degree,
+                                                           terms.z_degree};
     auto it = cache_.find(key);
     if (it == cache_.end()) it = cache_.emplace(key, SurfaceCv(terms, frame_, xy_, options_)).first;
     return it->second.score(values);
@@ -151,7 +154,7 @@ class SurfaceCvCache {
   const SurfaceFrame& frame_;
   const Eigen::MatrixXd& xy_;
   const FitOptions& options_;
-  std::map<std::tuple<SurfaceModel, int, int, int>, SurfaceCv> cache_;
+  std::map<std::tuple<SurfaceModel, int, int, int, int>, SurfaceCv> cache_;
 };
 
 }  // namespace
@@ -174,14 +177,20 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
   model.loaded_node_from_relation1 = settings.loaded_node_from_relation1;
   model.frame.basis = opt.basis;
   {
-    std::vector<double> xs, ys;
+    std::vector<double> xs, ys, zs;
     for (Eigen::Index r = 0; r < model.nodes.rows(); ++r) {
       xs.push_back(model.nodes(r, 0));
       ys.push_back(model.nodes(r, 1));
+      zs.push_back(model.nodes(r, 2));
     }
     model.frame.x = input_scale(xs, opt.scale_inputs);
     model.frame.y = input_scale(ys, opt.scale_inputs);
+    model.frame.z = input_scale(zs, opt.scale_inputs);
   }
+  // On nodes in one plane z = const the trivariate candidates are the bivariate ones
+  // (surface_basis.hpp); `best` and the cv mode then leave them out instead of repeating those.
+  const bool spans_z = nodes_span_z(model.nodes);
+  const int z_cap = spans_z ? kMaxOrder : 0;
   const Eigen::MatrixXd& xy = model.nodes;
   SurfaceCvCache surface_cv(model.frame, xy, opt);
 
@@ -229,8 +238,13 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
       // ---- relation 2 (002 eqs. 43–44) ----
       const std::string what2 = name(d, c, "relation 2 (surface)");
       const bool need_choice = !cfix.surface.has_value();
-      const bool want_sep = cv_every_model || (need_choice && settings.surface_choice != SurfaceChoice::bivariate);
-      const bool want_biv = cv_every_model || (need_choice && settings.surface_choice != SurfaceChoice::separable);
+      const bool want_sep = cv_every_model || (need_choice && (settings.surface_choice == SurfaceChoice::separable ||
+                                                               settings.surface_choice == SurfaceChoice::best));
+      const bool want_biv = cv_every_model || (need_choice && (settings.surface_choice == SurfaceChoice::bivariate ||
+                                                               settings.surface_choice == SurfaceChoice::best));
+      const bool want_tri = settings.surface_choice == SurfaceChoice::trivariate
+                                ? (cv_every_model || need_choice)
+                                : (spans_z && (cv_every_model || (need_choice && settings.surface_choice == SurfaceChoice::best)));
       std::vector<CvTable> surface_tables;
       if (want_sep) {
         CvTable t;
@@ -253,6 +267,16 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
         }
         surface_tables.push_back(std::move(t));
       }
+      if (want_tri) {
+        CvTable t;
+        t.relation = Relation::surface;
+        t.model = SurfaceModel::trivariate;
+        for (int n = 0; n <= lim.trivariate; ++n) {
+          const SurfaceTerms terms = SurfaceTerms::trivariate(n, std::min(n, z_cap));
+          t.candidates.push_back(surface_candidate(terms, surface_cv.score(terms, values)));
+        }
+        surface_tables.push_back(std::move(t));
+      }
       for (auto& t : surface_tables) {
         t.direction = d;
         t.component = c;
@@ -268,7 +292,8 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
           const SurfaceModel m = *surface_tables[ti].model;
           const bool allowed = settings.surface_choice == SurfaceChoice::best ||
                                (settings.surface_choice == SurfaceChoice::separable && m == SurfaceModel::separable) ||
-                               (settings.surface_choice == SurfaceChoice::bivariate && m == SurfaceModel::bivariate);
+                               (settings.surface_choice == SurfaceChoice::bivariate && m == SurfaceModel::bivariate) ||
+                               (settings.surface_choice == SurfaceChoice::trivariate && m == SurfaceModel::trivariate);
           if (!allowed) continue;
           for (int ci = 0; ci < static_cast<int>(surface_tables[ti].candidates.size()); ++ci) {
             pool.push_back(surface_tables[ti].candidates[ci]);

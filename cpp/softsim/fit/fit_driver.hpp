@@ -19,11 +19,13 @@ struct OrderLimits {
   int surface_x = 8;     // separable a
   int surface_y = 8;     // separable b
   int bivariate = 8;     // total degree n
+  int trivariate = 8;    // total degree n of the x–y–z surfaces
   int parameter = 3;     // relation 3
 };
 
-// Which surface models compete in the choice of relation 2.
-enum class SurfaceChoice { separable, bivariate, best };
+// Which surface models compete in the choice of relation 2. `best` pools separable, bivariate
+// and, where the surface nodes span z (nodes_span_z), trivariate candidates.
+enum class SurfaceChoice { separable, bivariate, trivariate, best };
 
 const char* to_string(SurfaceChoice choice);
 
@@ -97,7 +99,8 @@ struct FitResult {
 };
 
 // datasets[d]: the dataset of forces along axis d, or nullptr when direction d is not fitted.
-// With cv_every_model the surface CV covers both model families and fixed orders are
+// With cv_every_model the surface CV covers every model family (trivariate where the nodes span z,
+// or where it is the chosen family) and fixed orders are
 // cross-validated too (the `cv` mode); otherwise only what a choice needs is computed.
 // Throws InputError for inconsistent datasets, NumericalError when a final fit fails or no
 // candidate order is admissible.

@@ -64,7 +64,8 @@ nlohmann::json model_to_json(const FitModel& model) {
   }
   return {{"basis", to_string(model.frame.basis)},
           {"scaled_inputs", model.scaled_inputs},
-          {"frame", {{"x", scale_to_json(model.frame.x)}, {"y", scale_to_json(model.frame.y)}}},
+          {"frame",
+           {{"x", scale_to_json(model.frame.x)}, {"y", scale_to_json(model.frame.y)}, {"z", scale_to_json(model.frame.z)}}},
           {"loaded_node", model.loaded_node + 1},
           {"loaded_node_from_relation1", model.loaded_node_from_relation1},
           {"top_nodes", nodes},
@@ -78,6 +79,10 @@ FitModel model_from_json(const io::JsonReader& node) {
   const io::JsonReader frame = node.at("frame");
   m.frame.x = scale_from_json(frame.at("x"));
   m.frame.y = scale_from_json(frame.at("y"));
+  // Fits written before the trivariate surfaces have no z scale; only those surfaces read it,
+  // and a model that has one without it is refused below.
+  const bool has_z = frame.has("z");
+  if (has_z) m.frame.z = scale_from_json(frame.at("z"));
   frame.reject_unknown();
   m.nodes = read_xyz_rows(node.at("top_nodes"));
   const long n = static_cast<long>(m.nodes.rows());
@@ -104,6 +109,7 @@ FitModel model_from_json(const io::JsonReader& node) {
       const io::JsonReader cn = comps.at(kAxis[c]);
       ComponentModel& cm = dm.components[c];
       cm.surface = surface_terms_from_json(cn.at("surface"));
+      if (cm.surface.uses_z() && !has_z) frame.fail("a z scale (\"z\": {center, half_width}) for the trivariate surfaces");
       const std::int64_t k = cn.get_int("parameter_order");
       cn.require(k >= 0 && k <= kMaxOrder, "parameter_order", "an order between 0 and " + std::to_string(kMaxOrder));
       cm.parameter_order = static_cast<int>(k);

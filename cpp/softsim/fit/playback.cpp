@@ -72,17 +72,21 @@ Eigen::MatrixXd evaluate_direct(const FitModel& model, const Eigen::Vector3d& fo
       const ComponentModel& cm = dm.components[c];
       if (cm.surface.model == SurfaceModel::zero) continue;
       const Eigen::VectorXd p = surface_coefficients(model, d, c, delta);
-      std::vector<double> px(cm.surface.max_order() + 1), py(cm.surface.max_order() + 1);
+      const int order = cm.surface.max_order();
+      std::vector<double> px(order + 1), py(order + 1), pz(order + 1);
       for (int j = 0; j < n; ++j) {
         if (model.loaded_node_from_relation1 && j == model.loaded_node && c == d) {
           u(j, c) += delta;  // 002 §5.1.1: eq. 49 substituted at the loaded node
           continue;
         }
-        evaluate_basis(model.frame.basis, cm.surface.max_order(), model.frame.x.to_unit(model.nodes(j, 0)), px.data());
-        evaluate_basis(model.frame.basis, cm.surface.max_order(), model.frame.y.to_unit(model.nodes(j, 1)), py.data());
+        evaluate_basis(model.frame.basis, order, model.frame.x.to_unit(model.nodes(j, 0)), px.data());
+        evaluate_basis(model.frame.basis, order, model.frame.y.to_unit(model.nodes(j, 1)), py.data());
+        evaluate_basis(model.frame.basis, order, model.frame.z.to_unit(model.nodes(j, 2)), pz.data());
         double value = 0.0;
-        for (int k = 0; k < cm.surface.size(); ++k)
-          value += p[k] * px[cm.surface.terms[k][0]] * py[cm.surface.terms[k][1]];  // 002 eq. 44
+        for (int k = 0; k < cm.surface.size(); ++k) {
+          const auto& t = cm.surface.terms[k];
+          value += p[k] * px[t[0]] * py[t[1]] * pz[t[2]];  // 002 eq. 44 (z: the trivariate surface)
+        }
         u(j, c) += value;
       }
     }

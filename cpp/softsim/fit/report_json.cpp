@@ -133,9 +133,11 @@ nlohmann::json paper_units_to_json(const FitModel& model) {
       nlohmann::json terms = nlohmann::json::array();
       for (std::size_t t = 0; t < ps.powers.size(); ++t) {
         const Eigen::VectorXd b = ps.beta.row(static_cast<Eigen::Index>(t)).transpose();
-        terms.push_back({{"x_power", ps.powers[t][0]},
-                         {"y_power", ps.powers[t][1]},
-                         {"beta", std::vector<double>(b.data(), b.data() + b.size())}});
+        nlohmann::json term = {{"x_power", ps.powers[t][0]},
+                               {"y_power", ps.powers[t][1]},
+                               {"beta", std::vector<double>(b.data(), b.data() + b.size())}};
+        if (cm.surface.model == SurfaceModel::trivariate) term["z_power"] = ps.powers[t][2];
+        terms.push_back(term);
       }
       comps[kAxis[c]] = {{"surface", surface_terms_to_json(cm.surface)}, {"terms", terms}};
     }

@@ -38,6 +38,7 @@ void read_cv(const io::JsonReader& cv, FitSettings& s) {
       s.limits.surface_y = as_order(ab[1]);
     }
     s.limits.bivariate = read_order(*mo, "bivariate", s.limits.bivariate);
+    s.limits.trivariate = read_order(*mo, "trivariate", s.limits.trivariate);
     s.limits.parameter = read_order(*mo, "parameters", s.limits.parameter);
     mo->reject_unknown();
   }
@@ -80,7 +81,7 @@ void read_orders(const io::JsonReader& orders, FitSettings& s) {
 }  // namespace
 
 SurfaceTerms surface_terms_from_json(const io::JsonReader& node) {
-  const std::string model = node.get_choice("model", {"separable", "bivariate", "zero"});
+  const std::string model = node.get_choice("model", {"separable", "bivariate", "trivariate", "zero"});
   SurfaceTerms terms;
   if (model == "separable") {
     const io::JsonReader ab = node.at("orders");
@@ -88,6 +89,15 @@ SurfaceTerms surface_terms_from_json(const io::JsonReader& node) {
     terms = SurfaceTerms::separable(as_order(ab[0]), as_order(ab[1]));
   } else if (model == "bivariate") {
     terms = SurfaceTerms::bivariate(as_order(node.at("degree")));
+  } else if (model == "trivariate") {
+    const int degree = as_order(node.at("degree"));
+    int z_degree = degree;
+    if (node.has("z_degree")) {
+      const io::JsonReader zd = node.at("z_degree");
+      z_degree = as_order(zd);
+      if (z_degree > degree) zd.fail("a z degree between 0 and the degree " + std::to_string(degree));
+    }
+    terms = SurfaceTerms::trivariate(degree, z_degree);
   } else {
     terms = SurfaceTerms::zero();
   }
@@ -100,6 +110,8 @@ nlohmann::json surface_terms_to_json(const SurfaceTerms& terms) {
     case SurfaceModel::separable:
       return {{"model", "separable"}, {"orders", {terms.order_x, terms.order_y}}};
     case SurfaceModel::bivariate: return {{"model", "bivariate"}, {"degree", terms.degree}};
+    case SurfaceModel::trivariate:
+      return {{"model", "trivariate"}, {"degree", terms.degree}, {"z_degree", terms.z_degree}};
     case SurfaceModel::zero: break;
   }
   return {{"model", "zero"}};
@@ -112,10 +124,12 @@ FitSettings fit_settings_from_json(const io::JsonReader& config) {
                         : Basis::legendre;
   s.options.scale_inputs =
       config.get_choice("input_scaling", {"unit_interval", "none"}, "unit_interval") == "unit_interval";
-  const std::string model = config.get_choice("surface_model", {"separable", "bivariate", "best"}, "separable");
-  s.surface_choice = model == "separable"   ? SurfaceChoice::separable
-                     : model == "bivariate" ? SurfaceChoice::bivariate
-                                            : SurfaceChoice::best;
+  const std::string model =
+      config.get_choice("surface_model", {"separable", "bivariate", "trivariate", "best"}, "separable");
+  s.surface_choice = model == "separable"    ? SurfaceChoice::separable
+                     : model == "bivariate"  ? SurfaceChoice::bivariate
+                     : model == "trivariate" ? SurfaceChoice::trivariate
+                                             : SurfaceChoice::best;
   s.loaded_node_from_relation1 =
       config.get_choice("loaded_node_displacement", {"relation1", "surface"}, "relation1") == "relation1";
   if (const auto cv = config.optional("cv")) read_cv(*cv, s);
@@ -154,6 +168,7 @@ nlohmann::json fit_settings_to_json(const FitSettings& s) {
              {{"force", s.limits.force},
               {"surface", {s.limits.surface_x, s.limits.surface_y}},
               {"bivariate", s.limits.bivariate},
+              {"trivariate", s.limits.trivariate},
               {"parameters", s.limits.parameter}}}}},
           {"solver",
            {{"max_iterations", lm.max_iterations},

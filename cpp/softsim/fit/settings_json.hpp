@@ -15,7 +15,8 @@ FitSettings fit_settings_from_json(const io::JsonReader& config);
 // The settings as written back into an artifact (what was actually used, defaults included).
 nlohmann::json fit_settings_to_json(const FitSettings& settings);
 
-// {"model": "separable", "orders": [a, b]} | {"model": "bivariate", "degree": n} | {"model": "zero"}
+// {"model": "separable", "orders": [a, b]} | {"model": "bivariate", "degree": n} |
+// {"model": "trivariate", "degree": n, "z_degree": m (optional, default n)} | {"model": "zero"}
 SurfaceTerms surface_terms_from_json(const io::JsonReader& node);
 nlohmann::json surface_terms_to_json(const SurfaceTerms& terms);
 
