@@ -136,5 +136,6 @@ def report(ctx):
         f"- Held at full depth, the finest mesh's force is {fmt(fine['held'] / fine['held_hertz'], 3)}× Hertz's with "
         f"{fine['contacts']} nodes in contact; the step was {fmt(fine['dt'])} s against a critical step of "
         f"{fmt(fine['dt_critical'])} s (the projection adds no stiffness: the critical step is the body's own).",
-        "- Not done yet: friction and the CalculiX contact comparison.", ""]
+        "- Not done yet: the CalculiX contact comparison (friction exists, `friction`; this frictionless "
+        "comparison does not use it).", ""]
     ctx.out("summary.md").write_text("\n".join(lines) + "\n")

@@ -5,7 +5,9 @@
 // shapes' distances, and the config's checks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "softsim/dynamics/scene.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
@@ -171,7 +173,55 @@ TEST(Contact, BadToolsAreInputErrorsNamingThePointer) {
   nan_position["position"] = {0, "x", 0};
   EXPECT_NE(error_of(nan_position).find("/boundary/tools/0/position"), std::string::npos);
   nlohmann::json extra = sphere;
-  extra["friction"] = 0.3;
-  EXPECT_NE(error_of(extra).find("friction"), std::string::npos);
+  extra["stickiness"] = 0.3;
+  EXPECT_NE(error_of(extra).find("stickiness"), std::string::npos);
+  nlohmann::json negative_friction = sphere;
+  negative_friction["friction"] = -0.1;
+  EXPECT_NE(error_of(negative_friction).find("/boundary/tools/0/friction"), std::string::npos);
   EXPECT_NE(error_of(sphere, true).find("/boundary/tools"), std::string::npos);
+}
+
+// Coulomb friction: a plate pressed 2 mm on the top face and then dragged 5 mm along x. With a
+// large μ the face sticks to the plate: the nodes inside the face move with it exactly (the
+// face's edges may lift off the plate where the block bulges). With μ = 0.3 the face slides under
+// the plate while it is dragged: the lateral force never exceeds μ times the normal force (each
+// node's at most its own limit) and comes within 1 % of it. Without friction there is none.
+TEST(Contact, APlateDraggedOverTheFaceSticksOrSlidesByCoulomb) {
+  const auto m = cuboid(3, 3, 3, kSide, kSide, kSide);
+  auto drag = [&](double mu) {
+    nlohmann::json j = base_config(1, 60.0);
+    j["boundary"]["tools"] = {{{"shape", "plane"}, {"normal", {0, 0, -1}}, {"position", {0, 0, kSide}},
+                               {"nodes", "top"}, {"friction", mu}}};
+    const auto c = parse(j, m);
+    hybrid::DhdScene scene(std::shared_ptr<const mesh::TetMesh>(&m, [](const mesh::TetMesh*) {}), c);
+    const double press = 0.002, slide = 0.005;
+    auto plate_at = [&](double t) {
+      const double s = std::clamp(t / 0.1, 0.0, 1.0), r = std::clamp((t - 0.1) / 0.2, 0.0, 1.0);
+      return Eigen::Vector3d(slide * r, 0, kSide - press * s * s * (3 - 2 * s));
+    };
+    Eigen::Vector3d mid_drag_force = Eigen::Vector3d::Zero();
+    for (int s = 0; scene.time() < 0.3; ++s) {
+      scene.solver().set_tool_position(0, plate_at(scene.solver().time_at(s) + scene.solver().step_size(s)));
+      scene.step();
+      if (mid_drag_force.isZero() && scene.time() >= 0.25) mid_drag_force = scene.solver().tool_force(0);
+    }
+    std::vector<double> top_x;  // of the nodes inside the top face
+    for (int node : m.node_sets.at("top")) {
+      const Eigen::Vector3d& X = m.nodes[node];
+      if (X.x() > 1e-9 && X.x() < kSide - 1e-9 && X.y() > 1e-9 && X.y() < kSide - 1e-9)
+        top_x.push_back(scene.displacement()[3 * node]);
+    }
+    return std::make_tuple(mid_drag_force, top_x, plate_at(scene.time()).x());
+  };
+  const auto [stuck_force, stuck_x, plate_x] = drag(100.0);
+  ASSERT_EQ(stuck_x.size(), 4u);
+  for (double x : stuck_x) EXPECT_NEAR(x, plate_x, 1e-9 * plate_x);
+  const auto [sliding_force, sliding_x, plate_x2] = drag(0.3);
+  EXPECT_GT(sliding_force.z(), 0.01);  // the face pushes the plate up
+  EXPECT_LT(sliding_force.x(), 0.0);   // and holds it back
+  EXPECT_LE(-sliding_force.x(), 0.3 * sliding_force.z() * (1 + 1e-12));
+  EXPECT_GT(-sliding_force.x(), 0.99 * 0.3 * sliding_force.z());
+  for (double x : sliding_x) EXPECT_LT(x, 0.9 * plate_x2);  // the face lags behind the plate
+  const auto [free_force, free_x, plate_x3] = drag(0.0);
+  EXPECT_NEAR(free_force.x(), 0.0, 1e-12);
 }

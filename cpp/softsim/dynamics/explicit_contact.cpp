@@ -9,7 +9,9 @@
 // body's force on the tool is −Σ f. The work of f is booked trapezoidally like a nodal load's,
 // so the energy balance holds and the growth check sees the tool's work as external work.
 // A projection adds no stiffness: the stable step is the body's own (a penalty spring of
-// stiffness k would lower it to 2 / sqrt((k_body + k) / m)).
+// stiffness k would lower it to 2 / sqrt((k_body + k) / m)). Coulomb friction (RigidTool::friction)
+// takes the same kinematic form along the surface: the node's step relative to the tool is undone
+// as far as a force of μ |f_n| allows.
 // Nodes with a constrained component are not listed (a constraint wins); a node without mass
 // (left without elements by a cut) holds its place and is not moved.
 #include "softsim/dynamics/explicit_solver.hpp"
@@ -40,7 +42,8 @@ void ExplicitSolver::build_contacts(const std::vector<char>& constrained) {
   contact_work_.assign(contacts_.size(), 0.0);
 }
 
-void ExplicitSolver::project_contacts(int i, int step, double t_next, const double* up, const double* uc, double* un) {
+void ExplicitSolver::project_contacts(int i, int step, double t, double t_next, const double* up, const double* uc,
+                                     double* un) {
   for (int e = contact_begin_[i]; e < contact_begin_[i + 1]; ++e) {
     const ContactEntry& c = contacts_[e];
     const RigidTool& tool = scene_.tools[c.tool];
@@ -49,13 +52,30 @@ void ExplicitSolver::project_contacts(int i, int step, double t_next, const doub
     f[0] = f[1] = f[2] = 0.0;
     if (A_[i] > 0) {
       const Eigen::Vector3d x = c.position + Eigen::Vector3d(un[3 * i], un[3 * i + 1], un[3 * i + 2]);
+      const Eigen::Vector3d centre = tool.centre(t_next);
       Eigen::Vector3d normal;
-      const double d = tool.signed_distance(x, tool.centre(t_next), normal);
+      const double d = tool.signed_distance(x, centre, normal);
       if (d < 0) {
         for (int k = 0; k < 3; ++k) {
           const double move = -d * normal[k];
           un[3 * i + k] += move;
           f[k] = move / A_[i];
+        }
+        if (tool.friction > 0) {
+          // The node's step relative to the tool, along the surface: undone (stick) unless the
+          // force that takes exceeds μ |f_n| (slip: the force is capped there, along the same line).
+          const Eigen::Vector3d centre_now = step == tool_moved_at_[c.tool] ? tool_moved_from_[c.tool] : tool.centre(t);
+          Eigen::Vector3d slide(un[3 * i] - uc[3 * i], un[3 * i + 1] - uc[3 * i + 1], un[3 * i + 2] - uc[3 * i + 2]);
+          slide -= centre - centre_now;
+          slide -= slide.dot(normal) * normal;
+          Eigen::Vector3d tangential = -slide / A_[i];
+          const double limit = tool.friction * (-d / A_[i]);
+          const double size = tangential.norm();
+          if (size > limit) tangential *= limit / size;
+          for (int k = 0; k < 3; ++k) {
+            un[3 * i + k] += A_[i] * tangential[k];
+            f[k] += tangential[k];
+          }
         }
       }
     }
@@ -70,6 +90,9 @@ void ExplicitSolver::project_contacts(int i, int step, double t_next, const doub
 void ExplicitSolver::set_tool_position(int k, const Eigen::Vector3d& centre) {
   if (k < 0 || k >= static_cast<int>(scene_.tools.size())) throw InputError("tool " + std::to_string(k) + " out of range");
   if (!centre.allFinite()) throw InputError("tool: a finite position");
+  if (!started_) start();
+  tool_moved_from_[k] = scene_.tools[k].centre(time());
+  tool_moved_at_[k] = n_done_;
   scene_.tools[k].start = centre;
   scene_.tools[k].travel.setZero();
   scene_.tools[k].ramp = Ramp{};

@@ -210,6 +210,8 @@ void ExplicitSolver::start() {
   std::fill(contact_work_.begin(), contact_work_.end(), 0.0);
   tool_force_samples_.assign(scene_.tools.size(), {});
   tool_contact_samples_.assign(scene_.tools.size(), {});
+  tool_moved_from_.assign(scene_.tools.size(), Eigen::Vector3d::Zero());
+  tool_moved_at_.assign(scene_.tools.size(), -1);
   next_event_ = 0;
   n_done_ = 0;
   energies_.clear();

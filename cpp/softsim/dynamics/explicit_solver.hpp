@@ -269,7 +269,7 @@ class ExplicitSolver {
   void build_contacts(const std::vector<char>& constrained);
   // After node i's update: moves it out of the tools it entered (see RigidTool) and books the
   // contact work; `t_next` is the time of un.
-  void project_contacts(int i, int step, double t_next, const double* up, const double* uc, double* un);
+  void project_contacts(int i, int step, double t, double t_next, const double* up, const double* uc, double* un);
   void record_tool_forces();
   void check_step();
   std::string where(int step) const;
@@ -326,6 +326,10 @@ class ExplicitSolver {
   std::vector<ContactEntry> contacts_;
   std::vector<double> contact_force_, contact_work_;
   std::vector<std::vector<Eigen::Vector3d>> tool_force_samples_;
+  // Per tool: where set_tool_position moved it from, and the step that moves it (−1: none): the
+  // tool's displacement over that step, which friction needs.
+  std::vector<Eigen::Vector3d> tool_moved_from_;
+  std::vector<int> tool_moved_at_;
   std::vector<std::vector<int>> tool_contact_samples_;
   std::array<bool, 3> probe_free_ = {true, true, true};
   Eigen::Vector3d probe_previous_ = Eigen::Vector3d::Zero();

@@ -54,7 +54,10 @@ struct ProbeSpring {
 // central-difference step a listed node that lies inside the tool is moved to the tool's surface
 // along the normal (the projection an explicit TLED code such as NiftySim applies), and the
 // force that move needs, M Δu / A (the central-difference coefficient of the node), is the
-// contact force. A projection adds no stiffness, so the stable step is the body's own.
+// contact force. A projection adds no stiffness, so the stable step is the body's own. With a
+// friction coefficient μ, the node's motion along the surface relative to the tool is undone as
+// well (stick) unless the force that takes exceeds μ times the normal force, when it is capped
+// there (slip): Coulomb friction in the same kinematic form.
 struct RigidTool {
   enum class Shape { sphere, capsule, plane };
   std::string name;
@@ -65,6 +68,7 @@ struct RigidTool {
   Eigen::Vector3d start = Eigen::Vector3d::Zero();      // centre (plane: a point on it) at t = 0 (m)
   Eigen::Vector3d travel = Eigen::Vector3d::Zero();     // moved by travel × ramp(t) (m)
   Ramp ramp;
+  double friction = 0;                        // Coulomb coefficient μ (0: frictionless)
   std::vector<int> nodes;                     // the nodes it can touch (a surface), ascending
   std::vector<Eigen::Vector3d> positions;     // their reference positions X (m)
 
