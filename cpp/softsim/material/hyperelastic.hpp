@@ -30,7 +30,12 @@
 //   4. tests: a homogeneous deformation against the analytic stress, P and dP against finite
 //      differences of W and P, and rigid-rotation invariance (tests/cpp/test_material.cpp).
 // Nothing else changes: the element set, the static solver, the stress and energy outputs all
-// dispatch on HyperelasticLaw. The neo-Hookean law keeps its hand-written vectorised kernels
+// dispatch on HyperelasticLaw.
+//
+// Not covered yet: a law with internal variables (viscoelasticity: per-element state updated
+// each step) or with a direction (anisotropy: a fibre direction per element) needs that state
+// stored per element slot and passed beside F; Ogden-type laws written in principal stretches
+// fit the interface as it is (P and dP from the eigen-decomposition of C). The neo-Hookean law keeps its hand-written vectorised kernels
 // (fem/element_kernels.hpp); any other law runs the generic kernel, vectorised as far as its
 // first_piola allows.
 #include <string>
