@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "softsim/fem/element_kernels.hpp"
-#include "softsim/fem/law_kernels.hpp"
 #include "softsim/fem/element_response.hpp"
+#include "softsim/fem/law_kernels.hpp"
 
 namespace softsim::fem {
 
