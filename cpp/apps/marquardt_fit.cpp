@@ -100,18 +100,20 @@ int main(int argc, char** argv) {
   info.name = "marquardt_fit";
   info.summary = "Levenberg–Marquardt surface fits with cross-validated orders (002 §3); fit, cv or play back";
   info.modes = {"fit", "cv", "play"};
+  // The defaults shown are the config structs' own (fit_config.hpp), not copies.
+  const fit::FitConfig config;
+  const nlohmann::json defaults = fit::fit_settings_to_json(config.settings);
   info.config_help =
       "  fit, cv: {\"datasets\": {\"x\": \"axis_x.json\", \"y\": ..., \"z\": ...},   rpim_dataset artifacts, forces along each axis,\n"
       "            or {\"kind\": \"static_series\", \"mesh\": ..., \"loaded_point\": [x, y, z], \"cases\": [{\"result\": ..., \"force\": [..]}]}\n"
       "            \"basis\": \"legendre\"|\"monomial\", \"input_scaling\": \"unit_interval\"|\"none\",\n"
       "            \"surface_model\": \"separable\"|\"bivariate\"|\"best\", \"loaded_node_displacement\": \"relation1\"|\"surface\",\n"
-      "            \"cv\": {\"folds\": 5, \"seed\": 1, \"selection\": \"one_se\"|\"min\", \"exact_relative\": 1e-9,\n"
-      "                   \"max_orders\": {\"force\": 4, \"surface\": [8, 8], \"bivariate\": 8, \"parameters\": 3}},\n"
-      "            \"solver\": {\"max_iterations\": 100, \"function_tolerance\": 1e-15, \"gradient_tolerance\": 1e-12,\n"
-      "                       \"parameter_tolerance\": 1e-14, \"initial_damping\": 1e-4, \"max_condition\": 1e12},\n"
+      "            \"cv\": " + defaults["cv"].dump() + " (selection: \"one_se\"|\"min\"),\n"
+      "            \"solver\": " + defaults["solver"].dump() + ",\n"
       "            \"orders\": {\"z\": {\"force\": 1, \"components\": {\"x\": {\"surface\": {\"model\": \"separable\", \"orders\": [5, 1]}, \"parameters\": 1}}}},\n"
-      "            fit only: \"validation\": [\"random.json\"], \"check_forces\": [0.2, ..., 1.0] (N), \"examples\": 3,\n"
-      "                      \"timing\": {\"evaluations\": 100000}}\n"
+      "            fit only: \"validation\": [\"random.json\"], \"check_forces\": " + nlohmann::json(config.check_forces).dump() +
+      " (N), \"examples\": " + std::to_string(config.examples) + ",\n"
+      "                      \"timing\": {\"evaluations\": " + std::to_string(config.evaluations) + "}}\n"
       "  play:    {\"fit\": \"fit.json\", \"forces\": [[fx, fy, fz], ...] (N), \"reference\": \"dataset.json\" (optional)}\n"
       "  See cpp/apps/marquardt_fit.md.";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
