@@ -44,13 +44,13 @@ int main(int argc, char** argv) {
   info.summary = "dual-mode hybrid FEM (" + kinds_in_words() + " elements), explicit or static (paper 000)";
   info.flags = {"--bench", "--cut-bench"};
   info.config_help =
-      "  {\"mesh\": tet_mesh artifact, \"material\": {\"model\", \"E\", \"nu\", \"density\"}, \"damping\": {\"alpha\"},\n"
+      "  {\"mesh\": tet_mesh artifact, \"material\": {\"model\", \"E\", \"nu\", \"density\" | mooney_rivlin: \"C10\", \"C01\", \"K\", \"density\"}, \"damping\": {\"alpha\"},\n"
       "   \"partition\": {\"kind\": uniform|layers|linear_fraction|tags|sphere|strain, ...},\n"
       "   \"boundary\": {\"fixed\", \"prescribed\", \"forces\", \"gravity\", \"probe\"},\n"
       "   \"solver\": {\"kind\": explicit|static, \"steps\", \"dt\" | \"safety_factor\", \"force_dt\", \"increments\", ...},\n"
       "   \"output\": {\"vtu\", \"vtu_interval\", \"vtu_format\", \"trajectories\", \"trajectory_interval\", \"velocity\"},\n"
       "   \"cuts\": [{\"time\", \"from\", \"to\", \"mode\"}],\n"
-      "   \"threads\": 1, \"bench\": {\"steps\", \"threads\", \"linear_fraction\", \"repeats\", \"response_set\"}}\n"
+      "   \"threads\": " + std::to_string(hybrid::DhdConfig{}.threads) + ", \"bench\": {\"steps\", \"threads\", \"linear_fraction\", \"repeats\", \"response_set\"}}\n"
       "  --cut-bench: what the config's first cut costs the explicit engine and a precomputing method\n"
       "  Element kinds (partition \"element\", \"linear_element\", \"nonlinear_element\"; the artifact's element_kind\n"
       "  codes): " +

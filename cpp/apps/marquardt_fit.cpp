@@ -9,11 +9,11 @@
 #include "common/app.hpp"
 #include "softsim/fit/assessment.hpp"
 #include "softsim/fit/dataset_json.hpp"
+#include "softsim/fit/fit_config.hpp"
 #include "softsim/fit/fit_driver.hpp"
 #include "softsim/fit/model_json.hpp"
 #include "softsim/fit/report_json.hpp"
 #include "softsim/fit/settings_json.hpp"
-#include "softsim/fit/static_series.hpp"
 #include "softsim/fit/surface_playback.hpp"
 
 using namespace softsim;
@@ -21,43 +21,11 @@ using namespace softsim;
 namespace {
 
 void fit_or_cv(app::AppContext& ctx) {
-  const io::JsonReader& cfg = ctx.config();
   const bool cv_mode = ctx.mode == "cv";
-  const fit::FitSettings settings = fit::fit_settings_from_json(cfg);
-  // A dataset is an rpim_dataset path, a member of an rpim_dataset_set or a series of static
-  // solutions (static_series.hpp).
-  const io::JsonReader ds_node = cfg.at("datasets");
-  std::array<fit::DatasetRef, 3> paths;
-  std::array<std::optional<fit::StaticSeries>, 3> series;
-  for (int d = 0; d < 3; ++d) {
-    const auto entry = ds_node.optional(fit::kAxis[d]);
-    if (!entry) continue;
-    if (entry->raw().is_object() && !fit::is_dataset_member_ref(*entry)) {
-      series[d] = fit::static_series_from_json(*entry);
-      paths[d].path = series[d]->mesh;
-    } else {
-      paths[d] = fit::dataset_ref_from_json(*entry);
-    }
-  }
-  ds_node.reject_unknown();
-  std::vector<fit::DatasetRef> validation;
-  std::vector<double> check_forces = {0.2, 0.4, 0.6, 0.8, 1.0};  // 002 §5.1.1
-  int examples = 3;
-  long evaluations = 100000;
-  if (!cv_mode) {
-    if (const auto v = cfg.optional("validation"))
-      for (std::size_t i = 0; i < v->size(); ++i) validation.push_back(fit::dataset_ref_from_json((*v)[i]));
-    if (cfg.has("check_forces")) check_forces = cfg.get_doubles("check_forces");
-    const std::int64_t ex = cfg.get_int("examples", examples);
-    cfg.require(ex >= 0 && ex <= 1000, "examples", "0 to 1000 stored example cases");
-    examples = static_cast<int>(ex);
-    if (const auto t = cfg.optional("timing")) {
-      evaluations = t->get_int("evaluations", evaluations);
-      t->require(evaluations >= 0 && evaluations <= 100000000, "evaluations", "0 to 1e8 timed evaluations");
-      t->reject_unknown();
-    }
-  }
-  cfg.reject_unknown();
+  const fit::FitConfig config = fit::read_fit_config(ctx.config(), cv_mode);
+  const fit::FitSettings& settings = config.settings;
+  const auto& paths = config.datasets;
+  const auto& series = config.series;
 
   std::array<fit::Dataset, 3> data;
   std::array<const fit::Dataset*, 3> use = {nullptr, nullptr, nullptr};
@@ -102,20 +70,20 @@ void fit_or_cv(app::AppContext& ctx) {
     if (!exact && data[d].unit_solutions) exact.emplace(*data[d].unit_solutions);
   }
   nlohmann::json validated = nlohmann::json::array();
-  for (const auto& ref : validation) {
+  for (const auto& ref : config.validation) {
     ctx.input(ref.path);
     const fit::Dataset v = fit::read_dataset(ref);
     fit::require_same_nodes(v, result.model);
-    validated.push_back(fit::assess_dataset(result.model, v, examples));
+    validated.push_back(fit::assess_dataset(result.model, v, config.examples));
     if (!exact && v.unit_solutions) exact.emplace(*v.unit_solutions);
   }
-  if (exact) checks = fit::check_against_superposition(result.model, *exact, check_forces);
+  if (exact) checks = fit::check_against_superposition(result.model, *exact, config.check_forces);
   payload["model"] = fit::model_to_json(result.model);
   payload["paper_units"] = fit::paper_units_to_json(result.model);
   payload["training"] = training;
   payload["validation"] = validated;
   payload["check"] = checks;
-  payload["timing"] = evaluations > 0 ? fit::measure_evaluation_time(result.model, exact, evaluations) : nlohmann::json(nullptr);
+  payload["timing"] = config.evaluations > 0 ? fit::measure_evaluation_time(result.model, exact, config.evaluations) : nlohmann::json(nullptr);
   payload["dataset_timing"] = dataset_timing;
   payload["fit_seconds"] = fit_seconds;
   ctx.write(fit::kFitSchema, fit::kFitSchemaVersion, std::move(payload));
@@ -137,18 +105,20 @@ int main(int argc, char** argv) {
   info.name = "marquardt_fit";
   info.summary = "Levenberg–Marquardt surface fits with cross-validated orders (002 §3); fit, cv or play back";
   info.modes = {"fit", "cv", "play"};
+  // The defaults shown are the config structs' own (fit_config.hpp), not copies.
+  const fit::FitConfig config;
+  const nlohmann::json defaults = fit::fit_settings_to_json(config.settings);
   info.config_help =
       "  fit, cv: {\"datasets\": {\"x\": \"axis_x.json\", \"y\": ..., \"z\": ...},   rpim_dataset artifacts, forces along each axis,\n"
       "            or {\"kind\": \"static_series\", \"mesh\": ..., \"loaded_point\": [x, y, z], \"cases\": [{\"result\": ..., \"force\": [..]}]}\n"
       "            \"basis\": \"legendre\"|\"monomial\", \"input_scaling\": \"unit_interval\"|\"none\",\n"
       "            \"surface_model\": \"separable\"|\"bivariate\"|\"trivariate\"|\"best\", \"loaded_node_displacement\": \"relation1\"|\"surface\",\n"
-      "            \"cv\": {\"folds\": 5, \"seed\": 1, \"selection\": \"one_se\"|\"min\", \"exact_relative\": 1e-9,\n"
-      "                   \"max_orders\": {\"force\": 4, \"surface\": [8, 8], \"bivariate\": 8, \"trivariate\": 8, \"parameters\": 3}},\n"
-      "            \"solver\": {\"max_iterations\": 100, \"function_tolerance\": 1e-15, \"gradient_tolerance\": 1e-12,\n"
-      "                       \"parameter_tolerance\": 1e-14, \"initial_damping\": 1e-4, \"max_condition\": 1e12},\n"
+      "            \"cv\": " + defaults["cv"].dump() + " (selection: \"one_se\"|\"min\"),\n"
+      "            \"solver\": " + defaults["solver"].dump() + ",\n"
       "            \"orders\": {\"z\": {\"force\": 1, \"components\": {\"x\": {\"surface\": {\"model\": \"separable\", \"orders\": [5, 1]}, \"parameters\": 1}}}},\n"
-      "            fit only: \"validation\": [\"random.json\"], \"check_forces\": [0.2, ..., 1.0] (N), \"examples\": 3,\n"
-      "                      \"timing\": {\"evaluations\": 100000}}\n"
+      "            fit only: \"validation\": [\"random.json\"], \"check_forces\": " + nlohmann::json(config.check_forces).dump() +
+      " (N), \"examples\": " + std::to_string(config.examples) + ",\n"
+      "                      \"timing\": {\"evaluations\": " + std::to_string(config.evaluations) + "}}\n"
       "  play:    {\"fit\": \"fit.json\", \"forces\": [[fx, fy, fz], ...] (N), \"reference\": \"dataset.json\" (optional)}\n"
       "  See cpp/apps/marquardt_fit.md.";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {

@@ -1,4 +1,4 @@
-// libFuzzer target: the marquardt_fit readers — fit settings (a config), an rpim_dataset
+// libFuzzer target: the marquardt_fit readers — its config (modes fit and cv), an rpim_dataset
 // payload and a fitted model — each tried on the same JSON document. Any input must give a
 // value or an InputError: never a crash, undefined behaviour or another exception type.
 #include <cstddef>
@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "softsim/fit/dataset_json.hpp"
+#include "softsim/fit/fit_config.hpp"
 #include "softsim/fit/model_json.hpp"
 #include "softsim/fit/settings_json.hpp"
 #include "fuzz_json.hpp"
@@ -20,11 +21,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using softsim::io::JsonReader;
   namespace fit = softsim::fit;
   try {
-    const JsonReader cfg(doc, "fuzz.json");
-    if (doc.is_object()) {
-      cfg.accept("datasets");
-      fit::fit_settings_to_json(fit::fit_settings_from_json(cfg));
-    }
+    if (doc.is_object())
+      for (const bool cv_mode : {false, true})
+        fit::fit_settings_to_json(fit::read_fit_config(JsonReader(doc, "fuzz.json"), cv_mode).settings);
   } catch (const softsim::InputError&) {
   }
   try {

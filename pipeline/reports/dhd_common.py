@@ -177,6 +177,7 @@ SECTION_ORDER = ["table1", "table2", "partition", "pareto", "fig9", "liver"]
 MODEL_WORDS = {
     "neo_hookean_paper": "the paper's neo-Hookean form (000 eq. 22)",
     "neo_hookean_decoupled": "the decoupled neo-Hookean form of CalculiX and of Miller's TLED",
+    "mooney_rivlin": "the decoupled Mooney–Rivlin law (CalculiX's MOONEY-RIVLIN)",
     "linear": "linear elasticity",
 }
 

@@ -3,8 +3,9 @@
 // (a homogeneous deformation imposed on the boundary is reproduced exactly inside), a rigid
 // 90° rotation is force-free for TLED and corotational but not for linear elements, TLED and
 // linear agree to first order at small load, and the assembled tangent is the derivative of
-// the assembled force, its columns taking the one-shot stress increment bit for bit; the
-// output stress and strain of every kind under uniaxial stress, rigid rotation and dilation.
+// the assembled force, its columns taking the one-shot stress increment bit for bit (all of
+// these for the Mooney–Rivlin law too, through the generic kernel); the output stress and strain
+// of every kind under uniaxial stress, rigid rotation and dilation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,14 +38,23 @@ using test_scenes::interior_nodes;
 using test_scenes::kPaper;
 using test_scenes::max_abs;
 
+// An element formulation and the law it runs: a neo-Hookean form, or (mooney_rivlin) the
+// Mooney–Rivlin law with the same small-strain μ and K split between C10 and C01.
 struct KindForm {
   ElementKind kind;
   material::NeoHookeanForm form;
+  bool mooney_rivlin = false;
 };
+fem::Material material_of(const KindForm& kf) {
+  if (!kf.mooney_rivlin) return fem::Material::make(kPaper, kf.form);
+  const double mu = material::lame_parameters(kPaper).mu;
+  const material::MooneyRivlin law{0.3 * mu, 0.2 * mu, material::bulk_modulus(kPaper)};
+  return fem::Material::make(material::small_strain_parameters(law, kPaper.density), law);
+}
 std::string name_of(const KindForm& kf) {
+  const bool finite_strain = kf.kind == ElementKind::tled || kf.kind == ElementKind::anp;
   return std::string(fem::kind_name(kf.kind)) +
-         (kf.kind == ElementKind::tled || kf.kind == ElementKind::anp ? "_" + material::form_name(kf.form)
-                                                                     : std::string());
+         (!finite_strain ? std::string() : kf.mooney_rivlin ? "_mooney_rivlin" : "_" + material::form_name(kf.form));
 }
 const std::vector<KindForm> kAllKinds = {{ElementKind::linear, material::NeoHookeanForm::paper},
                                          {ElementKind::tled, material::NeoHookeanForm::paper},
@@ -52,6 +62,9 @@ const std::vector<KindForm> kAllKinds = {{ElementKind::linear, material::NeoHook
                                          {ElementKind::corotational, material::NeoHookeanForm::paper},
                                          {ElementKind::anp, material::NeoHookeanForm::paper},
                                          {ElementKind::anp, material::NeoHookeanForm::decoupled}};
+// The second law behind the same interface: the generic kernel, assembly and tangent.
+const std::vector<KindForm> kMooneyRivlinKinds = {{ElementKind::tled, material::NeoHookeanForm::decoupled, true},
+                                                  {ElementKind::anp, material::NeoHookeanForm::decoupled, true}};
 
 // A homogeneous deformation with stretch, shear and a 40° rotation (J ≈ 0.87).
 Eigen::Matrix3d general_F() {
@@ -80,11 +93,19 @@ TEST(CubeRoot, NewtonRootIsExactOnItsRange) {
   }
 }
 
+// The law's dP(F)[dF] in one call: the neo-Hookean one-shot function, or the law's own
+// linearisation for a law that has no one-shot form.
+Eigen::Matrix3d one_shot_increment(const material::HyperelasticLaw& law, const Eigen::Matrix3d& F,
+                                   const Eigen::Matrix3d& dF) {
+  if (const auto* nh = std::get_if<material::NeoHookean>(&law)) return material::first_piola_increment(*nh, F, dF);
+  return material::first_piola_increment(law, material::linearise(law, F), dF);
+}
+
 class Kinds : public ::testing::TestWithParam<KindForm> {};
 
 TEST_P(Kinds, FastKernelsEqualTheReferenceElementForces) {
   const auto m = cuboid(3, 3, 2, 0.03, 0.03, 0.02);
-  const fem::Material mat = fem::Material::make(kPaper, GetParam().form);
+  const fem::Material mat = material_of(GetParam());
   const std::vector<ElementKind> kinds(m.num_tets(), GetParam().kind);
   fem::ElementSet set(m, kinds, mat);
   const fem::Assembler ref(m, kinds, mat);
@@ -104,7 +125,7 @@ TEST_P(Kinds, ForcePatchTestAffineFieldLeavesInteriorNodesInEquilibrium) {
   // A homogeneous deformation gives a uniform stress; interior nodes then receive balancing
   // contributions from their elements (000 eq. 23 sums to zero).
   const auto m = cuboid(4, 3, 3, 0.04, 0.03, 0.03);
-  const fem::Material mat = fem::Material::make(kPaper, GetParam().form);
+  const fem::Material mat = material_of(GetParam());
   fem::ElementSet set(m, std::vector<ElementKind>(m.num_tets(), GetParam().kind), mat);
   const std::vector<double> f = gathered_forces(set, affine_field(m, general_F()));
   const double fmax = max_abs(f);
@@ -117,7 +138,7 @@ TEST_P(Kinds, PatchTestHomogeneousDeformationReproducedInside) {
   // Boundary nodes prescribed to X ↦ F X; the static solve must put every interior node on the
   // same affine map.
   const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
-  const fem::Material mat = fem::Material::make(kPaper, GetParam().form);
+  const fem::Material mat = material_of(GetParam());
   const Eigen::Matrix3d F = general_F();
   dynamics::StaticOptions opt;
   opt.increments = 4;
@@ -133,7 +154,7 @@ TEST_P(Kinds, PatchTestHomogeneousDeformationReproducedInside) {
 
 TEST_P(Kinds, AssembledTangentIsTheDerivativeOfTheAssembledForce) {
   const auto m = cuboid(2, 2, 2, 0.02, 0.02, 0.02);
-  const fem::Material mat = fem::Material::make(kPaper, GetParam().form);
+  const fem::Material mat = material_of(GetParam());
   const fem::Assembler as(m, std::vector<ElementKind>(m.num_tets(), GetParam().kind), mat);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> d(-0.001, 0.001);
@@ -157,7 +178,7 @@ TEST_P(Kinds, AssembledTangentIsTheDerivativeOfTheAssembledForce) {
 TEST_P(Kinds, TangentColumnsTakeTheOneShotIncrementBitForBit) {
   // The element tangent does the set-up that depends on F alone once for its 12 columns; every
   // column's dP must still be exactly the one-shot increment's.
-  const fem::Material mat = fem::Material::make(kPaper, GetParam().form);
+  const fem::Material mat = material_of(GetParam());
   const ElementKind kind = GetParam().kind;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> d(-0.2, 0.2);
@@ -167,9 +188,9 @@ TEST_P(Kinds, TangentColumnsTakeTheOneShotIncrementBitForBit) {
     Eigen::Matrix3d one_shot;
     switch (kind) {
       case ElementKind::linear: one_shot = material::linear_stress_increment(mat.lame, dF); break;
-      case ElementKind::tled: one_shot = material::first_piola_increment(mat.neo_hookean, F, dF); break;
+      case ElementKind::tled: one_shot = one_shot_increment(mat.law, F, dF); break;
       case ElementKind::corotational: one_shot = material::corotated_first_piola_increment(mat.lame, F, dF); break;
-      case ElementKind::anp: one_shot = material::first_piola_increment(mat.isochoric, F, dF); break;
+      case ElementKind::anp: one_shot = one_shot_increment(mat.isochoric, F, dF); break;
     }
     const Eigen::Matrix3d dP = fem::FirstPiolaLinearisation(mat, kind, F).increment(dF);
     for (int i = 0; i < 9; ++i) EXPECT_EQ(dP(i / 3, i % 3), one_shot(i / 3, i % 3)) << "trial " << trial << ", entry " << i;
@@ -178,6 +199,29 @@ TEST_P(Kinds, TangentColumnsTakeTheOneShotIncrementBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, Kinds, ::testing::ValuesIn(kAllKinds),
                          [](const auto& info) { return name_of(info.param); });
+INSTANTIATE_TEST_SUITE_P(MooneyRivlin, Kinds, ::testing::ValuesIn(kMooneyRivlinKinds),
+                         [](const auto& info) { return name_of(info.param); });
+
+TEST(ElementSet, MooneyRivlinWithoutC01EqualsTheDecoupledNeoHookeanKernelsToRoundOff) {
+  // The generic kernel with C01 = 0 against the hand-written decoupled neo-Hookean kernels, for
+  // TLED and ANP elements side by side.
+  const auto m = cuboid(3, 3, 2, 0.03, 0.03, 0.02);
+  std::vector<ElementKind> kinds(m.num_tets(), ElementKind::tled);
+  for (int e = 0; e < m.num_tets(); e += 2) kinds[e] = ElementKind::anp;
+  const fem::Material nh = fem::Material::make(kPaper, material::NeoHookeanForm::decoupled);
+  const auto& law = std::get<material::NeoHookean>(nh.law);
+  const material::MooneyRivlin mr_law{law.c10(), 0.0, law.bulk};
+  const fem::Material mr = fem::Material::make(kPaper, mr_law);
+  fem::ElementSet a(m, kinds, nh), b(m, kinds, mr);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> d(-0.002, 0.002);
+  std::vector<double> u = affine_field(m, general_F());
+  for (double& x : u) x += d(rng);
+  const std::vector<double> fa = gathered_forces(a, u), fb = gathered_forces(b, u);
+  const double scale = max_abs(fa);
+  ASSERT_GT(scale, 0);
+  for (std::size_t q = 0; q < fa.size(); ++q) EXPECT_NEAR(fb[q], fa[q], 1e-13 * scale) << "dof " << q;
+}
 
 TEST(RigidRotation, NinetyDegreesIsForceFreeForTledCorotationalAndAnpButNotLinear) {
   const auto m = cuboid(3, 3, 3, 0.03, 0.03, 0.03);
@@ -305,7 +349,8 @@ struct Uniaxial {
 Uniaxial uniaxial(const KindForm& kf, const fem::Material& m, double a) {
   const bool neo_hookean = kf.kind == ElementKind::tled || kf.kind == ElementKind::anp;
   const material::UniaxialSolution s =
-      neo_hookean ? material::uniaxial_neo_hookean(m.neo_hookean, a) : material::uniaxial_linear(kPaper, a);
+      neo_hookean ? material::uniaxial_neo_hookean(std::get<material::NeoHookean>(m.law), a)
+                  : material::uniaxial_linear(kPaper, a);
   Uniaxial u;
   u.F = Eigen::Vector3d(s.lateral_stretch, s.lateral_stretch, a).asDiagonal();
   u.sigma = kf.kind == ElementKind::linear ? s.nominal_stress

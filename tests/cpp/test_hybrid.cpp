@@ -247,7 +247,7 @@ TEST(Config, FullConfigIsReadAndSelectorsResolved) {
     "threads": 2
   })");
   const auto c = parse(j, m);
-  EXPECT_EQ(c.material.neo_hookean.form, material::NeoHookeanForm::decoupled);
+  EXPECT_EQ(std::get<material::NeoHookean>(c.material.law).form, material::NeoHookeanForm::decoupled);
   EXPECT_DOUBLE_EQ(c.material.elastic.poisson_ratio, 0.45);
   EXPECT_DOUBLE_EQ(c.damping_alpha, 3.0);
   EXPECT_EQ(c.partition.kind, hybrid::PartitionKind::linear_fraction);

@@ -6,19 +6,24 @@ namespace softsim::fem {
 
 Material Material::make(const material::ElasticParameters& elastic, material::NeoHookeanForm form) {
   material::validate(elastic);
+  return make(elastic, material::NeoHookean::from(form, elastic));
+}
+
+Material Material::make(const material::ElasticParameters& elastic, const material::HyperelasticLaw& law) {
+  material::validate(elastic);
   Material m;
   m.elastic = elastic;
   m.lame = material::lame_parameters(elastic);
-  m.neo_hookean = material::NeoHookean::from(form, elastic);
-  m.isochoric = material::isochoric_part(m.neo_hookean);
-  m.volumetric_modulus = material::volumetric_modulus(m.neo_hookean);
+  m.law = law;
+  m.isochoric = material::isochoric_part(law);
+  m.volumetric_modulus = material::volumetric_modulus(law);
   return m;
 }
 
 Eigen::Matrix3d first_piola(const Material& m, ElementKind kind, const Eigen::Matrix3d& F) {
   switch (kind) {
     case ElementKind::linear: return material::linear_stress(m.lame, F);
-    case ElementKind::tled: return material::first_piola(m.neo_hookean, F);
+    case ElementKind::tled: return material::first_piola(m.law, F);
     case ElementKind::corotational: return material::corotated_first_piola(m.lame, F);
     case ElementKind::anp: return material::first_piola(m.isochoric, F);
   }
@@ -28,7 +33,7 @@ Eigen::Matrix3d first_piola(const Material& m, ElementKind kind, const Eigen::Ma
 double energy_density(const Material& m, ElementKind kind, const Eigen::Matrix3d& F) {
   switch (kind) {
     case ElementKind::linear: return material::linear_energy_density(m.lame, F);
-    case ElementKind::tled: return material::strain_energy_density(m.neo_hookean, F);
+    case ElementKind::tled: return material::strain_energy_density(m.law, F);
     case ElementKind::corotational: return material::corotated_energy_density(m.lame, F);
     case ElementKind::anp: return material::strain_energy_density(m.isochoric, F);
   }
@@ -39,9 +44,9 @@ FirstPiolaLinearisation::FirstPiolaLinearisation(const Material& m, ElementKind 
     : material_(m), kind_(kind) {
   switch (kind) {
     case ElementKind::linear: break;  // dP does not depend on F
-    case ElementKind::tled: neo_hookean_ = material::linearise(m.neo_hookean, F); break;
+    case ElementKind::tled: law_ = material::linearise(m.law, F); break;
     case ElementKind::corotational: corotated_ = material::corotated_linearise(F); break;
-    case ElementKind::anp: neo_hookean_ = material::linearise(m.isochoric, F); break;
+    case ElementKind::anp: law_ = material::linearise(m.isochoric, F); break;
   }
 }
 
@@ -49,9 +54,9 @@ Eigen::Matrix3d FirstPiolaLinearisation::increment(const Eigen::Matrix3d& dF) co
   const Material& m = material_;
   switch (kind_) {
     case ElementKind::linear: return material::linear_stress_increment(m.lame, dF);
-    case ElementKind::tled: return material::first_piola_increment(m.neo_hookean, neo_hookean_, dF);
+    case ElementKind::tled: return material::first_piola_increment(m.law, law_, dF);
     case ElementKind::corotational: return material::corotated_first_piola_increment(m.lame, corotated_, dF);
-    case ElementKind::anp: return material::first_piola_increment(m.isochoric, neo_hookean_, dF);
+    case ElementKind::anp: return material::first_piola_increment(m.isochoric, law_, dF);
   }
   return Eigen::Matrix3d::Zero();
 }

@@ -6,6 +6,7 @@
 
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_response.hpp"
+#include "softsim/fem/law_kernels.hpp"
 
 namespace softsim::fem {
 
@@ -291,23 +292,12 @@ void ElementSet::compute_group(const Group& g, const double* u, int begin, int e
   const double mu = material_.lame.mu, lambda = material_.lame.lambda;
   switch (g.kind) {
     case ElementKind::linear: kernels::linear_kernel(s, u, begin, end, mu, lambda); break;
-    case ElementKind::tled:
-      if (material_.neo_hookean.form == material::NeoHookeanForm::paper)
-        kernels::tled_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.lambda,
-                                   stats.min_j);
-      else
-        kernels::tled_decoupled_kernel(s, u, begin, end, material_.neo_hookean.mu, material_.neo_hookean.bulk,
-                                       scratch_.data(), stats.min_j);
-      break;
+    case ElementKind::tled: kernels::tled_forces(material_.law, s, u, begin, end, scratch_.data(), stats.min_j); break;
     case ElementKind::corotational:
       kernels::corotational_kernel(s, u, begin, end, mu, lambda, scratch_.data(), stats.min_j);
       break;
     case ElementKind::anp:
-      if (material_.neo_hookean.form == material::NeoHookeanForm::paper)
-        kernels::anp_paper_kernel(s, u, begin, end, material_.neo_hookean.mu, nodal_pressure_.data(), stats.min_j);
-      else
-        kernels::anp_decoupled_kernel(s, u, begin, end, material_.neo_hookean.mu, nodal_pressure_.data(),
-                                      scratch_.data(), stats.min_j);
+      kernels::anp_forces(material_.isochoric, s, u, begin, end, nodal_pressure_.data(), scratch_.data(), stats.min_j);
       break;
   }
 }

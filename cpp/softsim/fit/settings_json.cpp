@@ -17,16 +17,16 @@ int as_order(const io::JsonReader& node) {
 }
 
 void read_cv(const io::JsonReader& cv, FitSettings& s) {
-  const std::int64_t folds = cv.get_int("folds", 5);
+  const std::int64_t folds = cv.get_int("folds", s.options.folds);
   cv.require(folds == 0 || folds >= 2, "folds", "0 (leave-one-out) or at least 2 folds");
   s.options.folds = static_cast<int>(folds);
-  const std::int64_t seed = cv.get_int("seed", 1);
+  const std::int64_t seed = cv.get_int("seed", static_cast<std::int64_t>(s.options.seed));
   cv.require(seed >= 0, "seed", "a non-negative integer");
   s.options.seed = static_cast<std::uint64_t>(seed);
-  s.options.selection = cv.get_choice("selection", {"one_se", "min"}, "one_se") == "min"
+  s.options.selection = cv.get_choice("selection", {"one_se", "min"}, to_string(s.options.selection)) == "min"
                             ? Selection::min_error
                             : Selection::one_standard_error;
-  s.options.exact_relative = cv.get_double("exact_relative", 1e-9);
+  s.options.exact_relative = cv.get_double("exact_relative", s.options.exact_relative);
   cv.require(s.options.exact_relative >= 0.0 && s.options.exact_relative < 1.0, "exact_relative",
              "a number in [0, 1)");
   if (const auto mo = cv.optional("max_orders")) {
@@ -119,19 +119,20 @@ nlohmann::json surface_terms_to_json(const SurfaceTerms& terms) {
 
 FitSettings fit_settings_from_json(const io::JsonReader& config) {
   FitSettings s;
-  s.options.basis = config.get_choice("basis", {"legendre", "monomial"}, "legendre") == "monomial"
+  s.options.basis = config.get_choice("basis", {"legendre", "monomial"}, to_string(s.options.basis)) == "monomial"
                         ? Basis::monomial
                         : Basis::legendre;
   s.options.scale_inputs =
-      config.get_choice("input_scaling", {"unit_interval", "none"}, "unit_interval") == "unit_interval";
+      config.get_choice("input_scaling", {"unit_interval", "none"}, s.options.scale_inputs ? "unit_interval" : "none") == "unit_interval";
   const std::string model =
-      config.get_choice("surface_model", {"separable", "bivariate", "trivariate", "best"}, "separable");
+      config.get_choice("surface_model", {"separable", "bivariate", "trivariate", "best"}, to_string(s.surface_choice));
   s.surface_choice = model == "separable"    ? SurfaceChoice::separable
                      : model == "bivariate"  ? SurfaceChoice::bivariate
                      : model == "trivariate" ? SurfaceChoice::trivariate
                                              : SurfaceChoice::best;
   s.loaded_node_from_relation1 =
-      config.get_choice("loaded_node_displacement", {"relation1", "surface"}, "relation1") == "relation1";
+      config.get_choice("loaded_node_displacement", {"relation1", "surface"},
+                        s.loaded_node_from_relation1 ? "relation1" : "surface") == "relation1";
   if (const auto cv = config.optional("cv")) read_cv(*cv, s);
   if (const auto sv = config.optional("solver")) read_solver(*sv, s.options.lm);
   if (const auto orders = config.optional("orders")) read_orders(*orders, s);

@@ -2,7 +2,8 @@
 // The fitting settings of a marquardt_fit config (see cpp/apps/marquardt_fit.md):
 //   "basis", "input_scaling", "surface_model", "cv" {...}, "solver" {...}, "orders" {...}.
 // Reads these members of `config` (marking them known); the caller reads the rest and calls
-// reject_unknown().
+// reject_unknown(). A member left out keeps FitSettings' default (its member initialisers, the
+// one place defaults are set).
 #include <nlohmann/json.hpp>
 
 #include "softsim/fit/fit_driver.hpp"

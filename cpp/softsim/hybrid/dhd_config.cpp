@@ -20,10 +20,12 @@ Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key) {
 
 dynamics::Ramp read_ramp(const io::JsonReader& r) {
   dynamics::Ramp ramp;
-  ramp.duration = r.get_double("ramp_time", 0.0);
+  ramp.duration = r.get_double("ramp_time", ramp.duration);
   r.require(ramp.duration >= 0, "ramp_time", "a non-negative time in seconds");
-  ramp.shape = r.get_choice("ramp", {"linear", "smooth"}, "linear") == "smooth" ? dynamics::Ramp::Shape::smooth
-                                                                               : dynamics::Ramp::Shape::linear;
+  const bool smooth = ramp.shape == dynamics::Ramp::Shape::smooth;
+  ramp.shape = r.get_choice("ramp", {"linear", "smooth"}, smooth ? "smooth" : "linear") == "smooth"
+                   ? dynamics::Ramp::Shape::smooth
+                   : dynamics::Ramp::Shape::linear;
   return ramp;
 }
 
@@ -91,16 +93,31 @@ std::array<bool, 3> read_components(const io::JsonReader& r) {
   return c;
 }
 
+// The constitutive law of the TLED and ANP elements (material/hyperelastic.hpp), apart from
+// the element formulation the partition chooses: a neo-Hookean form with (E, ν), or
+// Mooney–Rivlin with (C10, C01, K), whose small-strain (E, ν) the linear and corotational
+// elements and the stable step use.
 void read_material(const io::JsonReader& cfg, DhdConfig& c) {
   material::ElasticParameters p;
-  material::NeoHookeanForm form = material::NeoHookeanForm::paper;
+  material::MooneyRivlin mooney_rivlin;
   if (auto m = cfg.optional("material")) {
     c.model_defaulted = !m->has("model");
-    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "linear"}, "neo_hookean_paper");
-    p.youngs_modulus = m->get_positive("E", p.youngs_modulus);
-    p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
-    m->require(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5, "nu", "a Poisson's ratio in (-1, 0.5)");
-    p.density = m->get_positive("density", p.density);
+    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "linear"}, c.model);
+    if (c.model == "mooney_rivlin") {
+      mooney_rivlin.c10 = m->get_double("C10");
+      mooney_rivlin.c01 = m->get_double("C01");
+      m->require(mooney_rivlin.c10 + mooney_rivlin.c01 > 0, "C01", "C10 + C01 > 0 (the shear modulus is 2 (C10 + C01))");
+      mooney_rivlin.bulk = m->get_positive("K");
+      p.density = m->get_positive("density", p.density);
+      p = material::small_strain_parameters(mooney_rivlin, p.density);
+      m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
+                 "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+    } else {
+      p.youngs_modulus = m->get_positive("E", p.youngs_modulus);
+      p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
+      m->require(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5, "nu", "a Poisson's ratio in (-1, 0.5)");
+      p.density = m->get_positive("density", p.density);
+    }
     // A subnormal density (5e-324) or a ratio E/density that overflows gives an infinite wave
     // speed and a zero critical step (000 eq. 34): refused here, where the member is known.
     m->require(p.density >= std::numeric_limits<double>::min() && std::isfinite(std::sqrt(p.youngs_modulus / p.density)),
@@ -108,8 +125,11 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
     m->reject_unknown();
   }
   c.linear_material = c.model == "linear";
-  if (c.model == "neo_hookean_decoupled") form = material::NeoHookeanForm::decoupled;
-  c.material = fem::Material::make(p, form);
+  if (c.model == "mooney_rivlin")
+    c.material = fem::Material::make(p, mooney_rivlin);
+  else
+    c.material = fem::Material::make(p, c.model == "neo_hookean_decoupled" ? material::NeoHookeanForm::decoupled
+                                                                           : material::NeoHookeanForm::paper);
 }
 
 fem::ElementKind read_kind(const io::JsonReader& r, const std::string& key, const std::vector<std::string>& choices,
@@ -125,8 +145,8 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
   if (!p) return;
   const std::string kind = p->get_choice("kind", {"uniform", "layers", "linear_fraction", "tags", "sphere", "strain"},
                                          p->has("linear_fraction") ? "linear_fraction" : "uniform");
-  s.linear_element = read_kind(*p, "linear_element", fem::kind_names(true), "linear");
-  s.nonlinear_element = read_kind(*p, "nonlinear_element", fem::kind_names(false), "tled");
+  s.linear_element = read_kind(*p, "linear_element", fem::kind_names(true), fem::kind_name(s.linear_element));
+  s.nonlinear_element = read_kind(*p, "nonlinear_element", fem::kind_names(false), fem::kind_name(s.nonlinear_element));
   if (kind == "uniform") {
     s.kind = PartitionKind::uniform;
     s.uniform_element = read_kind(*p, "element", fem::kind_names(), default_element);
@@ -134,15 +154,17 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
     s.kind = PartitionKind::layers;
     s.nonlinear_layers = p->get_int32("nonlinear_layers");
     p->require(s.nonlinear_layers >= 0, "nonlinear_layers", "a non-negative layer count");
-    s.tag = p->get_string("tag", "layer");
+    s.tag = p->get_string("tag", s.tag);
     p->require(mesh.element_tags.count(s.tag) > 0, "tag", "the name of an element tag of the mesh");
   } else if (kind == "linear_fraction") {
     s.kind = PartitionKind::linear_fraction;
     s.linear_fraction = p->get_double("linear_fraction");
     p->require(s.linear_fraction >= 0 && s.linear_fraction <= 1, "linear_fraction", "a share in [0, 1]");
     if (p->has("operating_point")) s.operating_point = read_vec3(*p, "operating_point");
-    s.distance = p->get_choice("distance", {"euclidean", "depth"}, "euclidean") == "depth" ? DistanceMetric::depth
-                                                                                          : DistanceMetric::euclidean;
+    const bool depth = s.distance == DistanceMetric::depth;
+    s.distance = p->get_choice("distance", {"euclidean", "depth"}, depth ? "depth" : "euclidean") == "depth"
+                     ? DistanceMetric::depth
+                     : DistanceMetric::euclidean;
   } else if (kind == "tags") {
     s.kind = PartitionKind::tags;
     s.tag = p->get_string("tag");
@@ -155,7 +177,8 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
   } else {
     s.kind = PartitionKind::strain;
     c.strain_reference = p->get_string("reference");
-    s.measure = p->get_choice("measure", {"displacement_gradient", "green_lagrange"}, "displacement_gradient") ==
+    s.measure = p->get_choice("measure", {"displacement_gradient", "green_lagrange"},
+                              s.measure == StrainMeasure::green_lagrange ? "green_lagrange" : "displacement_gradient") ==
                         "green_lagrange"
                     ? StrainMeasure::green_lagrange
                     : StrainMeasure::displacement_gradient;
@@ -274,7 +297,7 @@ void read_boundary(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
 void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
   auto s = cfg.optional("solver");
   if (!s) return;
-  c.static_solver = s->get_choice("kind", {"explicit", "static"}, "explicit") == "static";
+  c.static_solver = s->get_choice("kind", {"explicit", "static"}, c.static_solver ? "static" : "explicit") == "static";
   // Keys of the other solver kind are refused rather than silently ignored.
   const std::set<std::string> explicit_keys = {"steps", "dt", "safety_factor", "force_dt", "energy_interval",
                                                "energy_growth_limit", "dt_check_interval"};
@@ -292,7 +315,7 @@ void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   if (s->has("dt")) e.dt = s->get_positive("dt");
   e.safety_factor = s->get_positive("safety_factor", e.safety_factor);
   s->require(e.safety_factor <= 1.0, "safety_factor", "a factor in (0, 1]");
-  e.force_dt = s->get_bool("force_dt", false);
+  e.force_dt = s->get_bool("force_dt", e.force_dt);
   e.dt_check_interval = s->get_int32("dt_check_interval", e.dt_check_interval);
   s->require(e.dt_check_interval >= 0, "dt_check_interval", "a non-negative step count (0: no re-estimate)");
   if (e.dt && s->has("dt_check_interval") && e.dt_check_interval > 0)
@@ -317,12 +340,12 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   auto o = cfg.optional("output");
   if (!o) return;
   OutputConfig& out = c.output;
-  out.vtu = o->get_string("vtu", "");
-  out.vtu_interval = o->get_int32("vtu_interval", 0);
+  out.vtu = o->get_string("vtu", out.vtu);
+  out.vtu_interval = o->get_int32("vtu_interval", out.vtu_interval);
   o->require(out.vtu_interval >= 0, "vtu_interval", "a non-negative step count");
   if (out.vtu_interval > 0 && out.vtu.empty()) o->fail("a \"vtu\" path together with \"vtu_interval\"");
   out.vtu_format = *io::parse_vtu_format(
-      o->get_choice("vtu_format", io::kVtuFormatNames, io::vtu_format_name(io::kDefaultVtuFormat)));
+      o->get_choice("vtu_format", io::kVtuFormatNames, io::vtu_format_name(out.vtu_format)));
   if (o->has("vtu_format") && out.vtu.empty()) o->fail("a \"vtu\" path together with \"vtu_format\"");
   if (auto traj = o->optional("trajectories")) {
     for (std::size_t i = 0; i < traj->size(); ++i) {
@@ -338,10 +361,10 @@ void read_output(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
       }
     }
   }
-  out.trajectory_interval = o->get_int32("trajectory_interval", 1);
+  out.trajectory_interval = o->get_int32("trajectory_interval", out.trajectory_interval);
   o->require(out.trajectory_interval >= 1, "trajectory_interval", "a positive step count");
-  out.velocity = o->get_bool("velocity", false);
-  out.displacement = o->get_bool("displacement", true);
+  out.velocity = o->get_bool("velocity", out.velocity);
+  out.displacement = o->get_bool("displacement", out.displacement);
   o->reject_unknown();
 }
 
@@ -384,7 +407,7 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   c.mesh_path = cfg.get_string("mesh");  // as written (the mesh is loaded by the caller)
   read_material(cfg, c);
   if (auto d = cfg.optional("damping")) {
-    c.damping_alpha = d->get_double("alpha", 0.0);
+    c.damping_alpha = d->get_double("alpha", c.damping_alpha);
     d->require(c.damping_alpha >= 0, "alpha", "a non-negative damping coefficient (1/s)");
     d->reject_unknown();
   }
@@ -392,7 +415,7 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   read_boundary(cfg, mesh, c);
   read_solver(cfg, mesh, c);
   read_output(cfg, mesh, c);
-  c.threads = cfg.get_int32("threads", 1);
+  c.threads = cfg.get_int32("threads", c.threads);
   cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");
   read_bench(cfg, mesh, c);
   c.cuts = read_cuts(cfg, mesh);

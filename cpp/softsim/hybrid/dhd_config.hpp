@@ -1,7 +1,9 @@
 #pragma once
 // The dhd_sim configuration (documented in cpp/apps/dhd_sim.md), read strictly from JSON:
 // every key is checked, node selectors are resolved against the mesh, and any problem is an
-// InputError naming the file and JSON pointer.
+// InputError naming the file and JSON pointer. Defaults are the member initialisers of these
+// structs (and of the library's: PartitionSpec, Scene's Ramp, StaticOptions, ...): the reader
+// falls back to them, and tests/cpp/test_config_docs.cpp checks dhd_sim.md's tables against them.
 #include <optional>
 #include <string>
 #include <vector>

@@ -103,8 +103,12 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                    {"density", m.elastic.density},
                    {"mu", m.lame.mu},
                    {"lambda", m.lame.lambda},
-                   {"bulk_modulus", m.neo_hookean.bulk},
+                   {"bulk_modulus", std::visit([](const auto& law) { return law.bulk; }, m.law)},
                    {"wave_speed", run.critical.wave_speed}};
+  if (const auto* mr = std::get_if<material::MooneyRivlin>(&m.law)) {
+    p["material"]["C10"] = mr->c10;
+    p["material"]["C01"] = mr->c01;
+  }
   p["mesh"] = {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}};
   nlohmann::json reactions = nlohmann::json::array();
   const auto& rs = run.explicit_result ? run.explicit_result->reactions : run.static_result->reactions;

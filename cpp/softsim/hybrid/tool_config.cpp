@@ -34,7 +34,7 @@ std::vector<dynamics::RigidTool> read_tools(const io::JsonReader& boundary, cons
     tool.start = read_vec3(t, "position");
     tool.travel = t.has("travel") ? read_vec3(t, "travel") : Eigen::Vector3d::Zero();
     tool.ramp = read_ramp(t);
-    tool.friction = t.get_double("friction", 0.0);
+    tool.friction = t.get_double("friction", tool.friction);
     t.require(tool.friction >= 0, "friction", "a Coulomb friction coefficient >= 0");
     if (t.has("nodes")) {
       const std::string set = t.get_string("nodes");

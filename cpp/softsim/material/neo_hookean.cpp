@@ -10,6 +10,8 @@ std::string form_name(NeoHookeanForm form) {
   return form == NeoHookeanForm::paper ? "neo_hookean_paper" : "neo_hookean_decoupled";
 }
 
+std::string law_name(const NeoHookean& law) { return form_name(law.form); }
+
 NeoHookean NeoHookean::from(NeoHookeanForm form, const ElasticParameters& p) {
   const LameParameters l = lame_parameters(p);
   NeoHookean law;

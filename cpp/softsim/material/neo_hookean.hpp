@@ -35,6 +35,9 @@ struct NeoHookean {
   double d1() const { return 2.0 / bulk; }
 };
 
+// The law's material.model name: form_name(law.form) (material/hyperelastic.hpp).
+std::string law_name(const NeoHookean& law);
+
 // Strain energy per unit reference volume. Requires det F > 0.
 double strain_energy_density(const NeoHookean& law, const Eigen::Matrix3d& F);
 // P = ∂W/∂F.

@@ -18,6 +18,7 @@ std::string dataset_kind_name(DatasetKind k);
 struct DatasetSpec {
   DatasetKind kind = DatasetKind::axis_z;
   int count = 5;                  // axis_*: magnitudes k max/count, k = 1..count; random: cases
+  static constexpr int kRandomCount = 100;  // random: the count when none is given
   double max_force = 1.0;         // N
   std::vector<double> magnitudes; // axis_*: explicit magnitudes (N) instead of count
   std::uint64_t seed = 2017;      // random

@@ -46,6 +46,12 @@ LengthSpec read_length(const io::JsonReader& parent, const std::string& key, con
   return out;
 }
 
+const char* polynomial_name(PolynomialBasis p) { return p == PolynomialBasis::linear ? "linear" : "none"; }
+
+const char* penalty_kind_name(PenaltyParams::Kind k) {
+  return k == PenaltyParams::Kind::scale_block ? "scale_block" : "add_diagonal";
+}
+
 nlohmann::json length_json(const LengthSpec& l) {
   return l.kind == LengthSpec::Kind::absolute ? nlohmann::json{{"length", l.value}}
                                               : nlohmann::json{{"spacing_factor", l.value}};
@@ -102,7 +108,7 @@ RpimSettings read_rpim_settings(const std::optional<io::JsonReader>& rpim, const
     s.q = r.get_positive("q", s.q);
     r.require(s.q <= 10, "q", "an exponent in (0, 10]");
     s.d_c = read_length(r, "d_c", s.d_c);
-    const std::string poly = r.get_choice("polynomial", {"none", "linear"}, "none");
+    const std::string poly = r.get_choice("polynomial", {"none", "linear"}, polynomial_name(s.polynomial));
     s.polynomial = poly == "linear" ? PolynomialBasis::linear : PolynomialBasis::none;
     s.max_moment_condition = r.get_positive("max_moment_condition", s.max_moment_condition);
     s.max_partition_error = r.get_positive("max_partition_error", s.max_partition_error);
@@ -126,7 +132,7 @@ RpimSettings read_rpim_settings(const std::optional<io::JsonReader>& rpim, const
   }
   if (penalty) {
     const io::JsonReader& r = *penalty;
-    const std::string kind = r.get_choice("kind", {"scale_block", "add_diagonal"}, "scale_block");
+    const std::string kind = r.get_choice("kind", {"scale_block", "add_diagonal"}, penalty_kind_name(s.penalty.kind));
     s.penalty.kind = kind == "add_diagonal" ? PenaltyParams::Kind::add_diagonal : PenaltyParams::Kind::scale_block;
     s.penalty.lambda = r.get_positive("lambda", s.penalty.lambda);
     r.require(s.penalty.lambda >= 1e3 && s.penalty.lambda <= 1e14, "lambda", "a penalty factor between 1e3 and 1e14");
@@ -156,8 +162,8 @@ DatasetSpec read_dataset_spec(const io::JsonReader& r) {
       d.force = Eigen::Vector3d(f[0], f[1], f[2]);
     }
   } else if (d.kind == DatasetKind::random) {
-    d.count = read_int(r, "count", 100, 1, 100000, "a case count between 1 and 100000");
-    const std::int64_t seed = r.get_int("seed", 2017);
+    d.count = read_int(r, "count", DatasetSpec::kRandomCount, 1, 100000, "a case count between 1 and 100000");
+    const std::int64_t seed = r.get_int("seed", static_cast<std::int64_t>(d.seed));
     r.require(seed >= 0, "seed", "a non-negative integer");
     d.seed = static_cast<std::uint64_t>(seed);
   } else {
@@ -168,18 +174,28 @@ DatasetSpec read_dataset_spec(const io::JsonReader& r) {
                 "a list of 1 to 100000 force magnitudes (N)");
       d.count = static_cast<int>(d.magnitudes.size());
     } else {
-      d.count = read_int(r, "count", 5, 1, 100000, "a case count between 1 and 100000");
+      d.count = read_int(r, "count", d.count, 1, 100000, "a case count between 1 and 100000");
     }
   }
   r.reject_unknown();
   return d;
 }
 
+DatasetOutput read_dataset_output(const std::optional<io::JsonReader>& block) {
+  DatasetOutput out;
+  if (!block) return out;
+  out.all_nodes = block->get_bool("all_nodes", out.all_nodes);
+  out.stiffness_conditioning = block->get_bool("stiffness_conditioning", out.stiffness_conditioning);
+  block->reject_unknown();
+  return out;
+}
+
 BlockStudy read_block_study(const std::optional<io::JsonReader>& block) {
   BlockStudy b;
   if (!block) return b;
   const io::JsonReader& r = *block;
-  const std::string field = r.get_choice("field", {"plane_wave", "linear_patch"}, "plane_wave");
+  const std::string field = r.get_choice("field", {"plane_wave", "linear_patch"},
+                                         b.field == ManufacturedField::linear_patch ? "linear_patch" : "plane_wave");
   b.field = field == "linear_patch" ? ManufacturedField::linear_patch : ManufacturedField::plane_wave;
   b.edge = r.get_positive("edge", b.edge);
   b.youngs_modulus = r.get_positive("youngs_modulus", b.youngs_modulus);
@@ -224,12 +240,12 @@ nlohmann::json rpim_settings_json(const RpimSettings& s, const RbfParams& rbf, c
           {"d_c", rbf.d_c},
           {"d_c_requested", length_json(s.d_c)},
           {"shape_length", rbf.shape_length()},
-          {"polynomial", s.polynomial == PolynomialBasis::linear ? "linear" : "none"},
+          {"polynomial", polynomial_name(s.polynomial)},
           {"max_moment_condition", s.max_moment_condition},
           {"max_partition_error", s.max_partition_error},
           {"support", sup},
           {"mean_spacing", mean_spacing},
-          {"penalty", {{"kind", s.penalty.kind == PenaltyParams::Kind::scale_block ? "scale_block" : "add_diagonal"},
+          {"penalty", {{"kind", penalty_kind_name(s.penalty.kind)},
                        {"lambda", s.penalty.lambda}}},
           {"solver", solver_name(s.solver)}};
 }

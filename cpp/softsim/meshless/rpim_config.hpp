@@ -14,12 +14,20 @@
 
 namespace softsim::meshless {
 
-// Each reader consumes its block (absent block: all defaults) and rejects unknown keys.
+// Each reader consumes its block (absent block: all defaults) and rejects unknown keys. A key
+// left out keeps the struct's default (its member initialisers, the one place defaults are set).
 PlateScene read_plate_scene(const std::optional<io::JsonReader>& block);
 RpimSettings read_rpim_settings(const std::optional<io::JsonReader>& rpim,
                                 const std::optional<io::JsonReader>& penalty,
                                 const std::optional<io::JsonReader>& solver);
 DatasetSpec read_dataset_spec(const io::JsonReader& block);
+
+// Mode dataset's "output" block.
+struct DatasetOutput {
+  bool all_nodes = false;               // every node's position and displacement too
+  bool stiffness_conditioning = false;  // the Lanczos estimate of cond(K), only when asked
+};
+DatasetOutput read_dataset_output(const std::optional<io::JsonReader>& block);
 BlockStudy read_block_study(const std::optional<io::JsonReader>& block);
 
 // Lee–Radok inputs of 002 §4.1 (SI), optional in a config.

@@ -58,12 +58,8 @@ RpimOutput run_dataset(const io::JsonReader& cfg) {
   } else {
     specs.push_back(read_dataset_spec(cfg.at("dataset")));
   }
-  bool all_nodes = false, stiffness_conditioning = false;  // the Lanczos estimate only when asked
-  if (const auto out = cfg.optional("output")) {
-    all_nodes = out->get_bool("all_nodes", false);
-    stiffness_conditioning = out->get_bool("stiffness_conditioning", false);
-    out->reject_unknown();
-  }
+  const DatasetOutput output = read_dataset_output(cfg.optional("output"));
+  const bool all_nodes = output.all_nodes, stiffness_conditioning = output.stiffness_conditioning;
   std::optional<IndentationInputs> indentation;
   if (const auto ind = cfg.optional("indentation")) indentation = read_indentation(*ind);
   cfg.reject_unknown();

@@ -1,0 +1,22 @@
+#pragma once
+// The finite-strain element kernels (TLED, ANP) for a material's hyperelastic law
+// (material/hyperelastic.hpp). The law is chosen here, once per range of elements; below that
+// it is a template parameter of the element loop, so there is no switch or virtual call per
+// element. The neo-Hookean law runs its hand-written vectorised kernels (element_kernels.hpp);
+// any other law runs the generic kernel, which asks the law for P(F) element by element
+// (forces ⁰V P ∇N, 000 eq. 13 written with P = F S).
+#include "softsim/fem/element_kernels.hpp"
+#include "softsim/material/hyperelastic.hpp"
+
+namespace softsim::fem::kernels {
+
+// TLED with `law`. `scratch` (one per slot) is the kernels' fix-up scratch (element_kernels.hpp).
+void tled_forces(const material::HyperelasticLaw& law, const SoaView s, const double* __restrict u, int begin,
+                 int end, double* __restrict scratch, double& min_j);
+
+// ANP with `isochoric`, the law's isochoric part (material::isochoric_part): ⁰V (P_iso(F) + p̄ cof F) ∇N
+// with p̄ the mean of the corners' nodal pressures (`pressure`, p_a at index 3a).
+void anp_forces(const material::HyperelasticLaw& isochoric, const SoaView s, const double* __restrict u, int begin,
+                int end, const double* __restrict pressure, double* __restrict scratch, double& min_j);
+
+}  // namespace softsim::fem::kernels
