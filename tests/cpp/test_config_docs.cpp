@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <regex>
@@ -22,6 +23,7 @@
 #include "softsim/fit/settings_json.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/io/json_reader.hpp"
+#include "softsim/meshless/organ_config.hpp"
 #include "softsim/meshless/rpim_config.hpp"
 #include "softsim/meshless/stiffness_solver.hpp"
 
@@ -202,7 +204,8 @@ json length(const meshless::LengthSpec& l) {
 }
 
 json resolved(const meshless::PlateScene& plate, const meshless::RpimSettings& s, const meshless::DatasetSpec& random,
-              const meshless::DatasetSpec& check, const meshless::DatasetOutput& out, const meshless::BlockStudy& b) {
+              const meshless::DatasetSpec& check, const meshless::DatasetOutput& out, const meshless::BlockStudy& b,
+              const meshless::OrganScene& organ) {
   json support = s.support == meshless::SupportRule::Kind::radius ? length(s.support_radius)
                                                                   : json{{"count", s.support_count}};
   support["kind"] = s.support == meshless::SupportRule::Kind::radius ? "radius" : "nearest";
@@ -226,7 +229,14 @@ json resolved(const meshless::PlateScene& plate, const meshless::RpimSettings& s
             {"edge", b.edge},
             {"youngs_modulus", b.youngs_modulus},
             {"poisson_ratio", b.poisson_ratio},
-            {"gauss_order", b.gauss_order}}}};
+            {"gauss_order", b.gauss_order}}},
+          {"organ",
+           {{"fixed_sets", organ.fixed_sets},
+            {"loaded_set", organ.loaded_set},
+            {"youngs_modulus", organ.youngs_modulus},
+            {"poisson_ratio", organ.poisson_ratio},
+            {"tet_rule", organ.tet_rule},
+            {"body_force", vec3(organ.body_force)}}}};
 }
 
 std::optional<io::JsonReader> block(const json& doc, const char* key) {
@@ -292,6 +302,12 @@ TEST(ConfigDocs, RpimPrecomputeDefaultsAreTheReadersDefaults) {
     const auto k = meshless::read_dataset_spec(io::JsonReader(check, "config.json"));
     const auto out = meshless::read_dataset_output(block(doc, "output"));
     const auto b = meshless::read_block_study(block(doc, "block"));
-    EXPECT_GE(check_defaults("rpim_precompute.md", resolved(plate, settings, r, k, out, b), label), 20) << label;
+    // The organ block needs its mesh (an input file that must exist); nothing else.
+    const std::string mesh = (std::filesystem::temp_directory_path() / "config_docs_organ_mesh.json").string();
+    std::ofstream(mesh) << "{}";
+    const json organ_doc = {{"organ", {{"mesh", mesh}}}};
+    const auto organ = meshless::read_organ_scene(io::JsonReader(organ_doc, "config.json").at("organ"));
+    std::filesystem::remove(mesh);
+    EXPECT_GE(check_defaults("rpim_precompute.md", resolved(plate, settings, r, k, out, b, organ), label), 20) << label;
   }
 }
