@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from pipeline import plots
+from pipeline.bench import cpu_description
 from pipeline.tables import fmt, write_table
 
 DEPTHS = (0.0005, 0.001, 0.002)  # m: where the table compares
@@ -70,6 +71,47 @@ def row_of(run):
             "held_hertz": float(hertz_force(depth[-1], radius, youngs, poisson)),
             "contacts": tool["contacts"][-1], "dt": run.payload["solver"]["dt"],
             "dt_critical": run.payload["solver"]["dt_critical"], "curve": (depth, force)}
+
+
+HAPTIC = (("haptic_tool", "cuboid"), ("haptic_tool_liver", "liver"))
+
+
+def haptic_rows(ctx):
+    """The haptic runs with a rigid tool as the instrument (haptic_sim, probe.contact "tool")."""
+    rows = []
+    for stage, scene in HAPTIC:
+        try:
+            runs = ctx.runs(stage)
+        except KeyError:
+            continue
+        for r in runs:
+            p = r.payload
+            force = np.array(p["force"])
+            t = p["timing"]
+            rows.append({"scene": scene, "tets": p["model"]["tets"], "frames": p["frames"], "substeps": p["substeps"],
+                         "peak": float(np.linalg.norm(force, axis=1).max()), "final": force[-1].tolist(),
+                         "contact_frames": int(np.sum(p["contact"])), "p50": t["frame_seconds_p50"],
+                         "p99": t["frame_seconds_p99"], "misses": t["deadline_misses"], "events": len(p["events"]),
+                         "frame_step": p["frame_step"]})
+    return rows
+
+
+def haptic_lines(ctx):
+    rows = haptic_rows(ctx)
+    if not rows:
+        return []
+    write_table(ctx, "haptic", ["scene", "tets", "frames", "substeps / frame", "frames in contact", "peak |F| (N)",
+                                "final F_z (N)", "frame p50 (ms)", "frame p99 (ms)", "deadline misses", "events"],
+                [[r["scene"], r["tets"], r["frames"], r["substeps"], r["contact_frames"], r["peak"], r["final"][2],
+                  1e3 * r["p50"], 1e3 * r["p99"], r["misses"], r["events"]] for r in rows],
+                "haptic_sim at 1 kHz with a rigid sphere as the instrument (probe.contact \"tool\"): pressed 1 cm "
+                f"and held; whole model, one thread, on {cpu_description()}. A deadline miss is a frame whose "
+                "computation took longer than the frame period.")
+    return [f"- **Haptic scene, {r['scene']}** ({r['tets']} tets): the sphere as the instrument at 1 kHz, in contact in "
+            f"{r['contact_frames']} of {r['frames']} frames, {fmt(r['final'][2], 3)} N on the device at full depth "
+            f"(peak {fmt(r['peak'], 3)} N); frames {fmt(1e3 * r['p50'])} ms median, {fmt(1e3 * r['p99'])} ms p99, "
+            f"{r['misses']} over the {fmt(1e3 * r['frame_step'])} ms deadline, {r['events']} numerical events "
+            "([haptic](haptic.md))." for r in rows]
 
 
 def report(ctx):
@@ -136,6 +178,7 @@ def report(ctx):
         f"- Held at full depth, the finest mesh's force is {fmt(fine['held'] / fine['held_hertz'], 3)}× Hertz's with "
         f"{fine['contacts']} nodes in contact; the step was {fmt(fine['dt'])} s against a critical step of "
         f"{fmt(fine['dt_critical'])} s (the projection adds no stiffness: the critical step is the body's own).",
+        *haptic_lines(ctx),
         "- Not done yet: the CalculiX contact comparison (friction exists, `friction`; this frictionless "
         "comparison does not use it).", ""]
     ctx.out("summary.md").write_text("\n".join(lines) + "\n")

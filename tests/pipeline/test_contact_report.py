@@ -48,3 +48,17 @@ def test_sentences_follow_the_runs(tmp_path):
     text = (tmp_path / "b" / "summary.md").read_text()
     assert "within 30 % of the layer-corrected solution" in text
     assert "too few to resolve" not in text
+
+
+def test_haptic_lines_follow_the_runs(tmp_path):
+    force = [[0.0, 0.0, 0.1 * k] for k in range(5)]
+    payload = {"force": force, "contact": [0, 1, 1, 1, 1], "frames": 5, "substeps": 2, "frame_step": 1e-3,
+               "model": {"tets": 4000}, "events": [],
+               "timing": {"frame_seconds_p50": 2e-4, "frame_seconds_p99": 1.5e-3, "deadline_misses": 1}}
+    ctx = FakeContext(tmp_path, runs={"haptic_tool": [run(payload)]})
+    lines = contact_hertz.haptic_lines(ctx)
+    assert len(lines) == 1
+    assert "in contact in 4 of 5 frames" in lines[0]
+    assert "0.4 N on the device at full depth" in lines[0]
+    assert "1 over the 1 ms deadline" in lines[0]
+    assert contact_hertz.haptic_lines(FakeContext(tmp_path / "none", runs={})) == []
