@@ -54,6 +54,12 @@ def write_atomic(path, write) -> None:
         raise
 
 
+def write_text_atomic(path, text: str) -> None:
+    """Every report, table and summary under results/ goes through here (and plots through
+    pipeline.plots.save): the old file or the whole new one, never a torn one."""
+    write_atomic(path, lambda tmp: tmp.write_text(text))
+
+
 def write_json_atomic(path, document) -> None:
     def write(tmp):
         with open(tmp, "w") as f:

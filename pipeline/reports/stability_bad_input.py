@@ -1,6 +1,7 @@
 """Bad-input corpus -> results/stability/bad_input.md/csv and summary_bad_input.md."""
 from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 
 def passed(r):
@@ -44,5 +45,5 @@ def report(ctx):
         text.append(f"The {len(failing)} others are listed with their cause and fix ([exceptions](bad_input_failures.md)): "
                     f"{ran} are accepted and run (exit 0), {internal} end as an internal error (exit 1) instead of "
                     f"exit 2" + (f", {crashed} crash" if crashed else "; none crashes") + ".")
-    ctx.out("summary_bad_input.md").write_text("\n".join(text) + "\n\n")
+    write_text_atomic(ctx.out("summary_bad_input.md"), "\n".join(text) + "\n\n")
     gather_summary(ctx)

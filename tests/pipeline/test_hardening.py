@@ -6,9 +6,10 @@ import json
 import os
 import stat
 import subprocess
+import sys
 from pathlib import Path
 
-from conftest import run_pipeline, run_tool, tool, write_json
+from conftest import ROOT, run_pipeline, run_tool, tool, write_json
 
 CUBOID = {"source": {"kind": "cuboid", "cells": [2, 2, 2], "size": [0.02, 0.02, 0.02]}}
 QUICK = {"stages": {"cube": {"tool": "mesher", "config": {
@@ -53,7 +54,8 @@ def test_vtu_naming_the_out_file_is_refused(tmp_path):
 
 def test_a_failed_run_leaves_none_of_its_vtu_files(tmp_path):
     """A forced step above the stability limit blows up after some snapshots were written: exit
-    3, and neither the snapshots, the .pvd series nor the artifact are left."""
+    3, and neither the snapshots, the .pvd series nor the artifact are left; an earlier run's
+    artifact at --out, which this run did not create, stays as it was."""
     mesh = tmp_path / "mesh.json"
     assert run_tool("mesher", "--config", write_json(tmp_path / "m.json", CUBOID), "--out", mesh).returncode == 0
     keep = tmp_path / "notes.txt"
@@ -63,10 +65,13 @@ def test_a_failed_run_leaves_none_of_its_vtu_files(tmp_path):
         "boundary": {"fixed": ["bottom"], "prescribed": [{"set": "top", "displacement": [0, 0, -0.001]}]},
         "solver": {"kind": "explicit", "steps": 20000, "dt": 0.05, "force_dt": True},
         "output": {"vtu": str(tmp_path / "sim.vtu"), "vtu_interval": 1}})
-    r = run_tool("dhd_sim", "--config", cfg, "--out", tmp_path / "out.json")
+    earlier = tmp_path / "out.json"
+    earlier.write_text('{"an": "earlier artifact"}')
+    r = run_tool("dhd_sim", "--config", cfg, "--out", earlier)
     assert r.returncode == 3, r.stderr
     left = sorted(p.name for p in tmp_path.iterdir())
-    assert left == ["m.json", "mesh.json", "notes.txt", "run.json"], left
+    assert left == ["m.json", "mesh.json", "notes.txt", "out.json", "run.json"], left
+    assert earlier.read_text() == '{"an": "earlier artifact"}'
 
 
 def test_memory_estimate_over_the_limit_is_refused_before_building(tmp_path):
@@ -159,3 +164,42 @@ def test_playback_over_the_memory_limit_names_the_forces(tmp_path):
     assert not out.exists()
     r = run_tool("marquardt_fit", "play", "--config", cfg, "--out", out)
     assert r.returncode == 0, r.stderr
+
+
+# A full disk: every write of a report (Markdown, CSV, PNG, REPORT.md) gives up half-way with
+# ENOSPC. Run in a child so that the patches stay there.
+FULL_DISK = r'''
+import errno, pathlib, sys
+import matplotlib.figure
+
+def full(path, data):
+    with open(path, "wb") as f:
+        f.write(data[: len(data) // 2])
+    raise OSError(errno.ENOSPC, "No space left on device", str(path))
+
+pathlib.Path.write_text = lambda self, text, *a, **k: full(self, text.encode())
+matplotlib.figure.Figure.savefig = lambda self, path, *a, **k: full(path, b"\x89PNG" * 1000)
+from pipeline.cli import main
+sys.exit(main(sys.argv[1:]))
+'''
+
+
+def results_files(env):
+    root = Path(env["PIPELINE_RESULTS"])
+    return {p.relative_to(root): p.read_bytes() for p in root.rglob("*") if p.is_file()}
+
+
+def test_a_full_disk_while_writing_reports_is_one_line_and_keeps_the_old_reports(pipeline_env):
+    tool("mesher")
+    doc = {**json.loads(json.dumps(QUICK))}
+    doc["stages"]["table"] = {"report": "pipeline.reports.meshes", "inputs": ["cube"], "params": {"order": ["cube"]}}
+    write_experiment(pipeline_env, "t", json.dumps(doc))
+    assert run_pipeline(pipeline_env, "run", "t").returncode == 0
+    before = results_files(pipeline_env)
+    assert any(p.suffix == ".png" for p in before) and any(p.name == "REPORT.md" for p in before), before.keys()
+    r = subprocess.run([sys.executable, "-c", FULL_DISK, "run", "t", "--stage", "table"], cwd=ROOT,
+                       env=pipeline_env, capture_output=True, text=True, timeout=300)
+    assert r.returncode != 0 and "Traceback" not in r.stderr, r.stderr
+    line = one_error_line(r)
+    assert line.startswith("pipeline: error: ") and line.endswith(": No space left on device"), line
+    assert results_files(pipeline_env) == before  # every report as it was, no temporary left
