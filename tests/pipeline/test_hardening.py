@@ -203,3 +203,26 @@ def test_a_full_disk_while_writing_reports_is_one_line_and_keeps_the_old_reports
     line = one_error_line(r)
     assert line.startswith("pipeline: error: ") and line.endswith(": No space left on device"), line
     assert results_files(pipeline_env) == before  # every report as it was, no temporary left
+
+
+def test_async_series_over_the_memory_limit_names_the_member_and_the_estimate(tmp_path):
+    """A long async_sim series is refused from its config, naming the member whose share of the
+    estimate is largest (the series, then the per-frame records), before any frame is run."""
+    cfg = json.loads((ROOT / "tests/bad_input/async_sim/good.json").read_text())
+    cfg["haptics"]["duration"] = 1000.0  # 1e6 frames
+    cfg["series_every"] = 1
+    path = write_json(tmp_path / "run.json", cfg)
+    out = tmp_path / "o.json"
+    env = dict(os.environ, SOFTSIM_MEMORY_LIMIT_MB="100")
+    r = subprocess.run([str(tool("async_sim")), "--config", str(path), "--out", str(out)],
+                       capture_output=True, text=True, env=env, timeout=60)
+    assert r.returncode == 2, r.stderr
+    line = one_error_line(r)
+    assert f"{path}: /series_every: expected a size whose run fits the memory limit: the run (mostly the time " \
+           "series in the artifact) would take about" in line, line
+    assert "the limit is 100.0 MiB (SOFTSIM_MEMORY_LIMIT_MB)" in line
+    del cfg["series_every"]
+    r = subprocess.run([str(tool("async_sim")), "--config", str(write_json(path, cfg)), "--out", str(out)],
+                       capture_output=True, text=True, env=dict(env, SOFTSIM_MEMORY_LIMIT_MB="10"), timeout=60)
+    assert r.returncode == 2 and f"{path}: /haptics/duration: expected a size whose run fits" in one_error_line(r)
+    assert not out.exists()
