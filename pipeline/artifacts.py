@@ -46,11 +46,13 @@ def write_atomic(path, write) -> None:
     try:
         write(tmp)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as e:
         try:
             tmp.unlink()
         except FileNotFoundError:
             pass
+        if isinstance(e, OSError) and e.errno is not None:  # named by the file meant, not the temporary
+            raise OSError(e.errno, e.strerror, str(path)) from e
         raise
 
 

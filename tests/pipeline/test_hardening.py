@@ -9,6 +9,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from conftest import ROOT, run_pipeline, run_tool, tool, write_json
 
 CUBOID = {"source": {"kind": "cuboid", "cells": [2, 2, 2], "size": [0.02, 0.02, 0.02]}}
@@ -177,10 +179,12 @@ def full(path, data):
         f.write(data[: len(data) // 2])
     raise OSError(errno.ENOSPC, "No space left on device", str(path))
 
-pathlib.Path.write_text = lambda self, text, *a, **k: full(self, text.encode())
-matplotlib.figure.Figure.savefig = lambda self, path, *a, **k: full(path, b"\x89PNG" * 1000)
+if sys.argv[1] in ("text", "all"):
+    pathlib.Path.write_text = lambda self, text, *a, **k: full(self, text.encode())
+if sys.argv[1] in ("png", "all"):
+    matplotlib.figure.Figure.savefig = lambda self, path, *a, **k: full(path, b"\x89PNG" * 1000)
 from pipeline.cli import main
-sys.exit(main(sys.argv[1:]))
+sys.exit(main(sys.argv[2:]))
 '''
 
 
@@ -189,7 +193,8 @@ def results_files(env):
     return {p.relative_to(root): p.read_bytes() for p in root.rglob("*") if p.is_file()}
 
 
-def test_a_full_disk_while_writing_reports_is_one_line_and_keeps_the_old_reports(pipeline_env):
+@pytest.mark.parametrize("failing", ["text", "png"])
+def test_a_full_disk_while_writing_reports_is_one_line_and_keeps_the_old_reports(pipeline_env, failing):
     tool("mesher")
     doc = {**json.loads(json.dumps(QUICK))}
     doc["stages"]["table"] = {"report": "pipeline.reports.meshes", "inputs": ["cube"], "params": {"order": ["cube"]}}
@@ -197,12 +202,22 @@ def test_a_full_disk_while_writing_reports_is_one_line_and_keeps_the_old_reports
     assert run_pipeline(pipeline_env, "run", "t").returncode == 0
     before = results_files(pipeline_env)
     assert any(p.suffix == ".png" for p in before) and any(p.name == "REPORT.md" for p in before), before.keys()
-    r = subprocess.run([sys.executable, "-c", FULL_DISK, "run", "t", "--stage", "table"], cwd=ROOT,
+    r = subprocess.run([sys.executable, "-c", FULL_DISK, failing, "run", "t", "--stage", "table"], cwd=ROOT,
                        env=pipeline_env, capture_output=True, text=True, timeout=300)
-    assert r.returncode != 0 and "Traceback" not in r.stderr, r.stderr
-    line = one_error_line(r)
-    assert line.startswith("pipeline: error: ") and line.endswith(": No space left on device"), line
-    assert results_files(pipeline_env) == before  # every report as it was, no temporary left
+    assert r.returncode != 0 and "Traceback" not in r.stdout + r.stderr, r.stdout + r.stderr
+    # The report's run fails in its one line; REPORT.md, written after the runs, in one more.
+    [failed] = [l for l in r.stdout.splitlines() if "FAILED" in l]
+    assert "FAILED table: OSError: [Errno 28] No space left on device" in failed, failed
+    for line in r.stderr.splitlines():
+        assert line.startswith("pipeline: error: ") and line.endswith("REPORT.md: No space left on device"), line
+    assert len(r.stderr.splitlines()) == (1 if failing == "text" else 0), r.stderr
+    after = results_files(pipeline_env)
+    # Every report as it was and no temporary left. The manifest and REPORT.md, written whole
+    # after the runs, record the failed report (REPORT.md only when its own write succeeds).
+    rewritten = {"manifest.json"} | ({"REPORT.md"} if failing == "png" else set())
+    assert {p: b for p, b in after.items() if p.name not in rewritten} == \
+        {p: b for p, b in before.items() if p.name not in rewritten}
+    assert b'"status": "failed"' in after[Path("manifest.json")]
 
 
 def test_async_series_over_the_memory_limit_names_the_member_and_the_estimate(tmp_path):
