@@ -34,7 +34,8 @@ def report(ctx):
             "unknown and mistyped fields, ν ≥ 0.5, E ≤ 0, zero or negative sizes and volumes, repeated or "
             "out-of-range node indices, empty node sets, loads on fixed nodes, Δt above the limit, files that are "
             "not meshes, configs and artifacts nested tens of thousands deep, devices given as inputs "
-            "(/dev/zero), sizes whose run would exceed the memory limit, meshes whose tetrahedra round to zero "
+            "(/dev/zero), sizes whose run would exceed the memory limit (dense factorisations and series of "
+            "async_sim included), runs that would take hours (the work limit), meshes whose tetrahedra round to zero "
             "volume, integers beyond their 32-bit field, outputs that name an input.", "",
             f"In plain words: {total - len(failing)} of {total} are refused the way they should be — exit 2, one "
             "line naming the file, the JSON pointer and what was expected, no output file."]
@@ -42,7 +43,8 @@ def report(ctx):
         ran = sum(r["exit"] == 0 for r in failing)
         internal = sum(r["exit"] == 1 for r in failing)
         crashed = sum(r["exit"] not in (0, 1, 2, 3) for r in failing)
-        text.append(f"The {len(failing)} others are listed with their cause and fix ([exceptions](bad_input_failures.md)): "
+        others = "The other one is" if len(failing) == 1 else f"The {len(failing)} others are"
+        text.append(f"{others} listed with their cause and fix ([exceptions](bad_input_failures.md)): "
                     f"{ran} are accepted and run (exit 0), {internal} end as an internal error (exit 1) instead of "
                     f"exit 2" + (f", {crashed} crash" if crashed else "; none crashes") + ".")
     write_text_atomic(ctx.out("summary_bad_input.md"), "\n".join(text) + "\n\n")
