@@ -1,4 +1,5 @@
-"""Bad-input corpus -> results/stability/bad_input.md/csv and summary_bad_input.md."""
+"""Bad-input corpus -> results/stability/bad_input.md/csv (by executable), bad_input_cases.md/csv
+(every case with its exit and line) and summary_bad_input.md."""
 from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
 from pipeline.artifacts import write_text_atomic
@@ -23,6 +24,11 @@ def report(ctx):
                                    "output left behind", "known issues"], table,
                 "The bad-input corpus (tests/bad_input/): the contract is exit 2, one line naming the file, the JSON "
                 "pointer and what was expected, and no output file.")
+    write_table(ctx, "bad_input_cases", ["executable", "case", "what is wrong", "exit", "contract kept", "message"],
+                [[r["tool"], r["case"], r["why"], r["exit"], "yes" if passed(r) else "no", r["message"]]
+                 for r in rows if not r["good"]],
+                "Every case of the bad-input corpus (tests/bad_input/<executable>/cases.json) with the exit code and "
+                "the one line its executable gave.")
     failing = [r for r in rows if not r["good"] and not passed(r)]
     write_table(ctx, "bad_input_failures", ["executable", "case", "what is wrong", "exit", "message", "known issue"],
                 [[r["tool"], r["case"], r["why"], r["exit"], r["message"], r["known_issue"] or ""] for r in failing],
@@ -30,6 +36,7 @@ def report(ctx):
     total = sum(1 for r in rows if not r["good"])
     text = ["## Bad input", "",
             f"{total} malformed inputs for the {len(table)} executables ([summary](bad_input.md), "
+            "[every case](bad_input_cases.md), "
             f"[exceptions](bad_input_failures.md)): truncated and empty JSON, NaN and out-of-range numbers, missing, "
             "unknown and mistyped fields, ν ≥ 0.5, E ≤ 0, zero or negative sizes and volumes, repeated or "
             "out-of-range node indices, empty node sets, loads on fixed nodes, Δt above the limit, files that are "
