@@ -135,10 +135,12 @@ mesh::TetMesh mesh_in_bounded_child(const std::function<mesh::TetMesh()>& work) 
       std::snprintf(text, sizeof text,
                     "expected a surface Gmsh fills within %.0f s (SOFTSIM_GMSH_TIMEOUT_S; a coarser target_edge "
                     "meshes faster), got no mesh after %.0f s", timeout, timeout);
-    else
+    else if (WIFSIGNALED(status))
       std::snprintf(text, sizeof text, "expected a surface Gmsh can mesh, got Gmsh ending with signal %d%s",
-                    WIFSIGNALED(status) ? WTERMSIG(status) : 0,
-                    kAddressSanitizer ? "" : " (out of memory under SOFTSIM_MEMORY_LIMIT_MB?)");
+                    WTERMSIG(status), kAddressSanitizer ? "" : " (out of memory under SOFTSIM_MEMORY_LIMIT_MB?)");
+    else
+      std::snprintf(text, sizeof text, "expected a surface Gmsh can mesh, got Gmsh ending with exit code %d and no mesh",
+                    WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     throw ConfigInputError("/source", text);
   }
   if (data[0] == 'E') throw InputError(data.substr(1));
