@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <string>
 #include <unistd.h>
 
@@ -22,9 +23,18 @@
 
 namespace fuzz {
 
-// A file of this fuzzing process: /tmp/softsim-fuzz-PID-name.
+// A file of this fuzzing process, /tmp/softsim-fuzz-PID-name, removed when the process exits.
 inline std::string scratch(const std::string& name) {
-  return "/tmp/softsim-fuzz-" + std::to_string(::getpid()) + "-" + name;
+  static std::set<std::string>* names = [] {
+    static std::set<std::string> all;
+    std::atexit([] {
+      for (const std::string& n : all) std::remove(n.c_str());
+    });
+    return &all;
+  }();
+  const std::string path = "/tmp/softsim-fuzz-" + std::to_string(::getpid()) + "-" + name;
+  names->insert(path);
+  return path;
 }
 
 inline std::string write_scratch(const std::string& name, const void* data, std::size_t size) {

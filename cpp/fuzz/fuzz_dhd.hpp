@@ -1,8 +1,9 @@
 #pragma once
 // dhd_sim's body (cpp/apps/dhd_sim.cpp) for the fuzz targets, with bounded work: at most 4
 // explicit steps or 2 static increments, one thread, no VTU (a path of the fuzzer's choosing is
-// not written). `mesh_path`: the mesh artifact to read instead of the config's "mesh" (which is
-// still read and checked), or "" for the config's own.
+// not written). `mesh_path`: the mesh artifact to read instead of the config's "mesh" (whose
+// string read_dhd_config still reads; a name of the fuzzer's choosing is not looked up), or "" for
+// the config's own.
 #include <algorithm>
 #include <string>
 
@@ -15,8 +16,7 @@ namespace fuzz {
 inline void dhd_body(softsim::app::AppContext& ctx, const std::string& mesh_path) {
   using namespace softsim;
   const io::JsonReader& cfg = ctx.config();
-  const std::string named = hybrid::read_mesh_path(cfg);
-  const mesh::TetMesh mesh = io::read_mesh_artifact(ctx.input(mesh_path.empty() ? named : mesh_path));
+  const mesh::TetMesh mesh = io::read_mesh_artifact(ctx.input(mesh_path.empty() ? hybrid::read_mesh_path(cfg) : mesh_path));
   hybrid::DhdConfig config = hybrid::read_dhd_config(cfg, mesh);
   if (!config.strain_reference.empty()) ctx.input(config.strain_reference);
   ctx.output(config.output.vtu, "/output/vtu");
