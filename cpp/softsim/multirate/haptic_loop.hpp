@@ -24,8 +24,8 @@ struct HapticLoopSpec {
   // The loop is declared unstable (NumericalError) when the contact displacement exceeds this
   // multiple of the probe amplitude: a passive model pulled by a spring cannot get there.
   double blow_up_factor = 1e3;
-  // Called every kProgressFrames frames with the frames done so far in this loop and the
-  // simulated time (a progress line for long runs); empty: never.
+  // Called every kProgressFrames frames and after the last with the frames done so far in this
+  // loop and the simulated time (a progress line for long runs); empty: never.
   std::function<void(long, double)> progress;
 };
 
