@@ -241,3 +241,25 @@ def test_async_series_over_the_memory_limit_names_the_member_and_the_estimate(tm
                        capture_output=True, text=True, env=dict(env, SOFTSIM_MEMORY_LIMIT_MB="10"), timeout=60)
     assert r.returncode == 2 and f"{path}: /haptics/duration: expected a size whose run fits" in one_error_line(r)
     assert not out.exists()
+
+
+def test_a_report_writing_through_its_out_path_writes_atomically(tmp_path, monkeypatch):
+    """ctx.out gives a path whose write_text is atomic: a report that writes
+    `ctx.out("summary.md").write_text(text)` on a full disk leaves the earlier file whole."""
+    import errno
+    import pathlib
+    from pipeline.artifacts import ResultPath
+    out = ResultPath(tmp_path) / "summary.md"
+    out.write_text("the earlier summary\n")
+
+    def full(self, text, *args, **kwargs):
+        pathlib.Path.write_bytes(self, text.encode()[:5])
+        raise OSError(errno.ENOSPC, "No space left on device", str(self))
+    monkeypatch.setattr(pathlib.Path, "write_text", full)
+    try:
+        out.write_text("a new summary, longer than the disk allows\n")
+        raise AssertionError("the full disk went unnoticed")
+    except OSError as e:
+        assert e.errno == errno.ENOSPC and e.filename == str(out)
+    assert out.read_text() == "the earlier summary\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["summary.md"]
