@@ -42,16 +42,38 @@ def write_atomic(path, write) -> None:
     # The thread's id as well as the PID: two threads of one process may write the same file at
     # once (one key in two overlapping experiments); the name still ends in `.tmp.PID`, which is
     # what the stale-file cleaner reads.
-    tmp = path.with_name(f"{path.name}.{threading.get_ident()}.tmp.{os.getpid()}")
+    tmp = Path(path.with_name(f"{path.name}.{threading.get_ident()}.tmp.{os.getpid()}"))  # a plain Path
     try:
         write(tmp)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as e:
         try:
             tmp.unlink()
         except FileNotFoundError:
             pass
+        if isinstance(e, OSError) and e.errno is not None:  # named by the file meant, not the temporary
+            raise OSError(e.errno, e.strerror, str(path)) from e
         raise
+
+
+class ResultPath(type(Path())):
+    """A path under results/ (what a report's ctx.out gives) whose write_text and write_bytes
+    are atomic, so that a report writing `ctx.out("summary.md").write_text(text)` gets the same
+    guarantee as write_text_atomic."""
+
+    def write_text(self, data, encoding=None, errors=None, newline=None):
+        write_atomic(self, lambda tmp: tmp.write_text(data, encoding, errors, newline))
+        return len(data)
+
+    def write_bytes(self, data):
+        write_atomic(self, lambda tmp: tmp.write_bytes(data))
+        return len(data)
+
+
+def write_text_atomic(path, text: str) -> None:
+    """Every report, table and summary under results/ goes through here (and plots through
+    pipeline.plots.save): the old file or the whole new one, never a torn one."""
+    write_atomic(path, lambda tmp: tmp.write_text(text))
 
 
 def write_json_atomic(path, document) -> None:

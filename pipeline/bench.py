@@ -4,6 +4,7 @@ import subprocess
 
 from pipeline.paths import BIN, RESULTS, ROOT
 from pipeline.tables import fmt, markdown_table
+from pipeline.artifacts import write_text_atomic
 
 
 def run_benchmarks(filter_regex: str = "") -> int:
@@ -30,7 +31,7 @@ def run_benchmarks(filter_regex: str = "") -> int:
         data = json.loads(out.read_text())
         # The build folder's absolute path is this machine's business: keep it relative.
         data.setdefault("context", {})["executable"] = exe.name
-        out.write_text(json.dumps(data, indent=2) + "\n")
+        write_text_atomic(out, json.dumps(data, indent=2) + "\n")
         rows = []
         for b in data.get("benchmarks", []):
             if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "mean":
@@ -47,13 +48,13 @@ def run_benchmarks(filter_regex: str = "") -> int:
     machine = (f"{cpu_description()}, {ctx.get('num_cpus', '?')} CPUs at {ctx.get('mhz_per_cpu', '?')} MHz, "
                f"library build type {ctx.get('library_build_type', '?')}")
     sections.append(f"Machine: {machine}.\n")
-    (out_dir / "README.md").write_text("\n".join(sections))
+    write_text_atomic(out_dir / "README.md", "\n".join(sections))
     summary = ["## Benchmarks\n", "Raw Google Benchmark tables: [bench/README.md](bench/README.md). "
                f"Machine: {machine}.\n"]
     summary += kernel_ratios(out_dir / "bench_dhd.json")
     from pipeline.bench_held import held_nodes_lines  # (it imports this module)
     summary += held_nodes_lines(out_dir / "bench_dhd.json")
-    (out_dir / "summary.md").write_text("\n".join(summary))
+    write_text_atomic(out_dir / "summary.md", "\n".join(summary))
     return status
 
 

@@ -17,6 +17,7 @@ from pathlib import Path
 
 from pipeline import experiment as experiment_mod
 from pipeline.paths import RESULTS, ROOT
+from pipeline.artifacts import write_text_atomic
 
 EXECUTORS = {"local pool": ["--executor", "local"], "dask-local": ["--executor", "dask-local"]}
 WORKERS = (2, 8, 16, 32)
@@ -70,7 +71,7 @@ def main(argv=None) -> int:
         with open(out / "executors.csv") as f:
             rows = [{k: (v if k in ("experiment", "executor", "load") else float(v)) for k, v in r.items()}
                     for r in csv.DictReader(f)]
-        (out / "executors.md").write_text(report(rows, args.jobs))
+        write_text_atomic(out / "executors.md", report(rows, args.jobs))
         return 0
     rows = []
     for name in args.experiments:
@@ -85,12 +86,11 @@ def main(argv=None) -> int:
     out.mkdir(parents=True, exist_ok=True)
     keys = ["experiment", "executor", "repeat", "load", "runs", "total_s", "startup_s", "runs_s", "exec_sum_s",
             "exec_mean_s", "overhead_mean_ms", "overhead_median_ms"]
-    with open(out / "executors.csv", "w") as f:
-        f.write(",".join(keys) + "\n")
-        for r in rows:
-            f.write(",".join(f"{r[k]:.3f}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n")
+    write_text_atomic(out / "executors.csv", "".join(
+        ",".join(f"{r[k]:.3f}" if isinstance(r[k], float) else str(r[k]) for k in keys) + "\n"
+        for r in [dict(zip(keys, keys))] + rows))
     # (load: the machine's 1-minute load average before and after the measurement)
-    (out / "executors.md").write_text(report(rows, args.jobs))
+    write_text_atomic(out / "executors.md", report(rows, args.jobs))
     return 0
 
 

@@ -11,6 +11,7 @@ import sys
 from pipeline.bench import cpu_description
 from pipeline.paths import BIN, RESULTS, ROOT
 from pipeline.tables import fmt, markdown_table
+from pipeline.artifacts import write_text_atomic
 
 PARTITIONS = {"2": "all linear (assembled rows)", "0": "all TLED (paper form)"}
 
@@ -71,13 +72,13 @@ def main(argv=None):
         return 1
     data = json.loads(out.read_text())
     data.setdefault("context", {})["executable"] = exe.name
-    out.write_text(json.dumps(data, indent=2) + "\n")
+    write_text_atomic(out, json.dumps(data, indent=2) + "\n")
     text = ["# Held nodes out of the explicit node update\n",
             f"Machine: {cpu_description()}, shared with other work (the ratio is of one run, interleaved).\n"]
     text += held_nodes_lines(out)
     text.append("Results are unchanged bit for bit (`HeldNodes.*` in `tests/cpp/test_dynamics.cpp`); only the "
                 "gather and the central-difference update of the held nodes are saved, not their elements.\n")
-    (out_dir / "held_nodes.md").write_text("\n".join(text))
+    write_text_atomic(out_dir / "held_nodes.md", "\n".join(text))
     print("\n".join(text))
     return 0
 

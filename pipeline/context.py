@@ -67,7 +67,8 @@ class ReportContext:
         return [v for views in self._views.values() for v in views]
 
     def out(self, name: str) -> Path:
-        path = self.results_dir / name
+        from pipeline.artifacts import ResultPath  # its write_text is atomic
+        path = ResultPath(self.results_dir / name)
         path.parent.mkdir(parents=True, exist_ok=True)
         if path not in self.outputs:
             self.outputs.append(path)

@@ -11,12 +11,14 @@ def figure(width=6.4, height=4.2):
     return fig, ax
 
 
-def save(fig, path) -> None:
+def save(fig, path, tight: bool = True) -> None:
     """Saves atomically (pipeline.artifacts.write_atomic): a full disk leaves the old plot or
-    none, never a truncated PNG."""
+    none, never a truncated PNG. tight=False keeps a layout placed by hand (colour bars on
+    axes of their own)."""
     from pathlib import Path
     from pipeline.artifacts import write_atomic
-    fig.tight_layout()
+    if tight:
+        fig.tight_layout()
     try:
         write_atomic(path, lambda tmp: fig.savefig(tmp, format=Path(path).suffix.lstrip(".") or None,
                                                    metadata={"Software": None}))

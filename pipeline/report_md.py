@@ -1,7 +1,7 @@
 """results/REPORT.md: the per-area summaries gathered in one page, in a fixed reading order."""
 import json
 import re
-from pipeline.artifacts import git_commit
+from pipeline.artifacts import git_commit, write_text_atomic
 from pipeline.paths import RESULTS
 
 ORDER = ["mesh", "dhd", "validation", "rpim", "rpim_stiffness", "rpim_liver", "async", "haptic", "cutting", "contact",
@@ -51,7 +51,7 @@ def assemble() -> None:
             sorted(d.glob("*_summary.md"))
         for summary in summaries:
             parts.append(_relink(summary.read_text().strip(), d) + "\n")
-    (RESULTS / "REPORT.md").write_text("\n".join(parts))
+    write_text_atomic(RESULTS / "REPORT.md", "\n".join(parts))
 
 
 def read_parts(folder, names) -> list:
@@ -63,7 +63,7 @@ def read_parts(folder, names) -> list:
 def gather_parts(ctx, names, into: str = "summary.md") -> None:
     """A results folder's summary from the parts its reports wrote, in a fixed order, a blank line
     apart: complete whichever report ran last."""
-    ctx.out(into).write_text("\n".join(read_parts(ctx.results_dir, names)))
+    write_text_atomic(ctx.out(into), "\n".join(read_parts(ctx.results_dir, names)))
 
 
 LINK = re.compile(r"(\]\()([^)#\s]+)(\))")

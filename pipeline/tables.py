@@ -2,6 +2,8 @@
 import csv
 import math
 
+from pipeline.artifacts import write_atomic, write_text_atomic
+
 
 # Magnitudes written as plain numbers; outside them exponent notation reads better (condition
 # numbers, residuals at round-off).
@@ -44,10 +46,13 @@ def markdown_table(headers, rows) -> str:
 def write_table(ctx, name: str, headers, rows, caption: str = "") -> str:
     """Writes results/<sub>/<name>.md and <name>.csv; returns the Markdown text."""
     md = (f"{caption}\n\n" if caption else "") + markdown_table(headers, rows)
-    ctx.out(f"{name}.md").write_text(md)
-    with open(ctx.out(f"{name}.csv"), "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(headers)
-        for row in rows:
-            w.writerow(["" if v is None else v for v in row])
+    write_text_atomic(ctx.out(f"{name}.md"), md)
+
+    def write_csv(tmp):
+        with open(tmp, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(headers)
+            for row in rows:
+                w.writerow(["" if v is None else v for v in row])
+    write_atomic(ctx.out(f"{name}.csv"), write_csv)
     return md

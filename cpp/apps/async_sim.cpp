@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/app.hpp"
+#include "common/progress_line.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/multirate/run_config.hpp"
 
@@ -29,9 +30,14 @@ int main(int argc, char** argv) {
       "  Full reference: cpp/apps/async_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
     const io::JsonReader& cfg = ctx.config();
-    const multirate::RunConfig config = multirate::read_run_config(cfg);
+    // read_run_config refuses a run over the memory or work limit (multirate/run_memory.hpp).
+    multirate::RunConfig config = multirate::read_run_config(cfg);
     multirate::ModelSummary model;
     const multirate::ReducedSystem system = multirate::build_system(config, model);
+    // Frames over every loop and the simulated time on a terminal; quiet otherwise.
+    app::ProgressLine progress_line("async_sim", multirate::total_loop_frames(config.comparison), "frame");
+    if (progress_line.enabled())
+      config.comparison.progress = [&](long long done, double time) { progress_line.update(done, time); };
     const multirate::ComparisonResult result = multirate::run_configured_comparison(system, config);
     ctx.write(multirate::kAsyncRunSchema, multirate::kAsyncRunSchemaVersion,
               multirate::make_payload(config, model, result));

@@ -1,38 +1,36 @@
-// libFuzzer target: the marquardt_fit readers — its config (modes fit and cv), an rpim_dataset
-// payload and a fitted model — each tried on the same JSON document. Any input must give a
-// value or an InputError: never a crash, undefined behaviour or another exception type.
+// libFuzzer target: the bytes as marquardt_fit's config file, through run_app (fuzz_app.hpp):
+// the fit config reader (modes fit and cv) on the config run_app read, and the rpim_dataset payload and fitted
+// model readers on the same document (what an input artifact holds), each on its own.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
+#include "fuzz_app.hpp"
 #include "softsim/fit/dataset_json.hpp"
 #include "softsim/fit/fit_config.hpp"
 #include "softsim/fit/model_json.hpp"
 #include "softsim/fit/settings_json.hpp"
-#include "fuzz_json.hpp"
-#include "softsim/io/errors.hpp"
-#include "softsim/io/json_reader.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  nlohmann::json doc;
-  if (!parse_fuzz_json(data, size, doc)) return 0;
+namespace {
+
+void read_fit_inputs(softsim::app::AppContext& ctx) {
   using softsim::io::JsonReader;
   namespace fit = softsim::fit;
-  try {
-    if (doc.is_object())
-      for (const bool cv_mode : {false, true})
-        fit::fit_settings_to_json(fit::read_fit_config(JsonReader(doc, "fuzz.json"), cv_mode).settings);
-  } catch (const softsim::InputError&) {
-  }
-  try {
-    fit::dataset_from_json(JsonReader(doc, "fuzz.json", "/payload"), "fuzz.json");
-  } catch (const softsim::InputError&) {
-  }
-  try {
-    fit::model_to_json(fit::model_from_json(JsonReader(doc, "fuzz.json", "/payload/model")));
-  } catch (const softsim::InputError&) {
-  }
+  const auto attempt = [](const auto& read) {
+    try {
+      read();
+    } catch (const softsim::InputError&) {
+    }
+  };
+  for (const bool cv_mode : {false, true})
+    attempt([&] { fit::fit_settings_to_json(fit::read_fit_config(ctx.config(), cv_mode).settings); });
+  attempt([&] { fit::dataset_from_json(JsonReader(ctx.config_json, ctx.config_path, "/payload"), ctx.config_path); });
+  attempt([&] { fit::model_to_json(fit::model_from_json(JsonReader(ctx.config_json, ctx.config_path, "/payload/model"))); });
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  fuzz::run_tool("marquardt_fit", std::string(reinterpret_cast<const char*>(data), size), read_fit_inputs);
   return 0;
 }

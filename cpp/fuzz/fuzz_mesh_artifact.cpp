@@ -1,25 +1,18 @@
-// libFuzzer target: JSON parsing plus the strict mesh-artifact reader (indices, orientation,
-// tag sizes). Any input must give a mesh or an InputError.
+// libFuzzer target: the bytes as the tet_mesh artifact a fixed dhd_sim config names, through
+// run_app (fuzz_app.hpp) with dhd_sim's body (fuzz_dhd.hpp): the artifact envelope, the strict
+// mesh reader (indices, orientation, tag sizes), the boundary and node sets a run uses.
 #include <cstddef>
 #include <cstdint>
-#include <string>
 
-#include <nlohmann/json.hpp>
-
-#include "fuzz_json.hpp"
-#include "softsim/io/errors.hpp"
-#include "softsim/io/json_reader.hpp"
-#include "softsim/io/mesh_artifact.hpp"
-#include "softsim/mesh/surface.hpp"
+#include "fuzz_dhd.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  nlohmann::json doc;
-  if (!parse_fuzz_json(data, size, doc)) return 0;
-  try {
-    const softsim::io::JsonReader payload(doc, "fuzz.json");
-    const auto mesh = softsim::io::mesh_from_json(payload);
-    softsim::mesh::extract_boundary(mesh, "fuzz.json");
-  } catch (const softsim::InputError&) {
-  }
+  const std::string mesh = fuzz::write_scratch("mesh.json", data, size);
+  const nlohmann::json config = {
+      {"mesh", mesh},
+      {"material", {{"model", "neo_hookean_paper"}, {"E", 5000}, {"nu", 0.35}, {"density", 1000}}},
+      {"boundary", {{"fixed", {"bottom"}}, {"prescribed", {{{"set", "top"}, {"displacement", {0, 0, -0.001}}}}}}},
+      {"solver", {{"kind", "explicit"}, {"steps", 2}}}};
+  fuzz::run_tool("dhd_sim", config.dump(), [](softsim::app::AppContext& ctx) { fuzz::dhd_body(ctx, ""); });
   return 0;
 }

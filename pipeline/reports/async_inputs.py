@@ -5,6 +5,7 @@ import numpy as np
 from pipeline import plots
 from pipeline.reports import async_common as C
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 HEADERS = ["input", "secondary values", "peak force whole (mN)", "peak force regions (mN)", "peak force exact (mN)",
            "RMS error vs whole (%)", "peak error vs whole (%)", "RMS error vs exact (%)",
@@ -90,5 +91,5 @@ def report(ctx):
                     f"{1e6 * ramp[False]['async_jump_w']:.3g} µN held against {1e6 * ramp[True]['async_jump_w']:.3g} µN "
                     f"interpolated and {1e6 * ramp[True]['whole_jump_w']:.3g} µN for the whole model.\n")
     text.append("Plots: " + ", ".join(f"[{p}](async/{p})" for p in pngs) + ".\n")
-    ctx.out("summary_inputs.md").write_text("\n".join(text))
+    write_text_atomic(ctx.out("summary_inputs.md"), "\n".join(text))
     C.gather_summary(ctx)

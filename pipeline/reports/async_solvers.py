@@ -2,6 +2,7 @@
 -> results/async/solvers.md/csv, solvers_mixed.md/csv and summary_solvers.md."""
 from pipeline.reports import async_common as C
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 
 def report(ctx):
@@ -36,5 +37,5 @@ def report(ctx):
     text = ["## Solvers (001 §4) in the haptic loop\n", md, md2,
             "An explicit secondary region at 10 frames per step would be far above its stability limit: the tool "
             "refuses such a configuration (exit code 2) before computing anything.\n"]
-    ctx.out("summary_solvers.md").write_text("\n".join(text))
+    write_text_atomic(ctx.out("summary_solvers.md"), "\n".join(text))
     C.gather_summary(ctx)

@@ -10,6 +10,7 @@ from pipeline.bench import cpu_description
 from pipeline.element_kinds import element_kind_names
 from pipeline.reports import dhd_common as common
 from pipeline.tables import fmt, write_table
+from pipeline.artifacts import write_text_atomic
 
 US = 1e6
 
@@ -277,7 +278,7 @@ def summary(ctx, events, costs, facts, fall, haptic):
                  f"(cpp/softsim/cutting/element_grid.hpp). Not done yet: separation along faces (node "
                  f"duplication). The pressed-cuboid cuts removed {sum(r['event']['elements_removed'] for r in press)} elements "
                  f"over {len(press)} runs.\n")
-    ctx.out("summary.md").write_text("\n".join(lines) + "\n")
+    write_text_atomic(ctx.out("summary.md"), "\n".join(lines) + "\n")
 
 
 def report(ctx):

@@ -25,6 +25,7 @@ from pipeline import plots
 from pipeline.element_kinds import (element_kind_names, element_kinds, kind_counts, kind_legend,  # noqa: F401
                                     kind_names, small_strain_kinds)
 from pipeline.report_md import read_parts
+from pipeline.artifacts import write_text_atomic
 
 SECTION_DIR = "sections"
 
@@ -219,7 +220,7 @@ def append_material_line(ctx, path) -> None:
         return
     text = path.read_text().rstrip("\n")
     if line not in text:
-        path.write_text(text + "\n\n" + line + "\n\n")
+        write_text_atomic(path, text + "\n\n" + line + "\n\n")
 
 
 def write_section(ctx, key: str, text: str, facts: dict = None) -> None:
@@ -230,14 +231,14 @@ def write_section(ctx, key: str, text: str, facts: dict = None) -> None:
     if not re.match(r"^[a-z0-9_]+$", key):
         raise ValueError(f"section key {key!r}")
     material = material_line(ctx)
-    ctx.out(f"{SECTION_DIR}/{key}.md").write_text(text.strip() + ("\n\n" + material if material else "") + "\n")
+    write_text_atomic(ctx.out(f"{SECTION_DIR}/{key}.md"), text.strip() + ("\n\n" + material if material else "") + "\n")
     if facts is not None:
-        ctx.out(f"{SECTION_DIR}/{key}.json").write_text(json.dumps(facts, indent=1, sort_keys=True) + "\n")
+        write_text_atomic(ctx.out(f"{SECTION_DIR}/{key}.json"), json.dumps(facts, indent=1, sort_keys=True) + "\n")
     name = getattr(ctx, "experiment_name", None)
     if name:
         from pipeline.artifacts import git_commit
         origin = {"experiment": name, "commit": git_commit(), "definition": definition_hash(name)}
-        ctx.out(f"{SECTION_DIR}/{ORIGIN_DIR}/{key}.json").write_text(json.dumps(origin, indent=1, sort_keys=True) + "\n")
+        write_text_atomic(ctx.out(f"{SECTION_DIR}/{ORIGIN_DIR}/{key}.json"), json.dumps(origin, indent=1, sort_keys=True) + "\n")
     assemble_summary(ctx)
 
 
@@ -289,7 +290,7 @@ def assemble_summary(ctx) -> None:
     keys = [k for k in SECTION_ORDER if k in found] + sorted(k for k in found if k not in SECTION_ORDER)
     parts = [SUMMARY_HEAD, provenance_line(origins, keys), verdict(facts)] + \
         read_parts(section_dir, [f"{k}.md" for k in keys])
-    ctx.out("summary.md").write_text("\n".join(p for p in parts if p))
+    write_text_atomic(ctx.out("summary.md"), "\n".join(p for p in parts if p))
 
 
 # --------------------------------------------------------------------------- the paper's numbers

@@ -99,8 +99,7 @@ def report(ctx):
     cb2.set_label("|u − u_TLED| (mm), row 3", fontsize=8)
     fig.suptitle(f"Top centre pushed down {fmt(applied * 100)} cm (mm axes). Edges: white TLED, dark linear",
                  fontsize=9)
-    plots.plt.savefig(ctx.out("fig9.png"), metadata={"Software": None})
-    plots.plt.close(fig)
+    plots.save(fig, ctx.out("fig9.png"), tight=False)
     md = write_table(ctx, "fig9", ["case", "linear", "TLED", "corotational", "max |u| (mm)", "e vs all-TLED (%)",
                                    "max |u − u_TLED| (mm)", "VTU"], table,
                      f"**000 Fig. 9 equivalent**, top centre pushed down {fmt(applied * 100)} cm, settled. The VTU "

@@ -107,8 +107,7 @@ def report(ctx):
     fig.colorbar(m2, cax=fig.add_axes([0.91, 0.08, 0.014, 0.33])).set_label("|u − u_TLED| (mm)", fontsize=8)
     fig.suptitle(f"Liver, push {fmt(load * unit_scale)} {unit} (mm axes; red dots: fixed nodes; edges: white TLED, "
                  "dark linear)", fontsize=9)
-    plots.plt.savefig(ctx.out("liver.png"), metadata={"Software": None})
-    plots.plt.close(fig)
+    plots.save(fig, ctx.out("liver.png"), tight=False)
 
     # Plain words.
     words = [f"The organ: {len(nodes)} nodes, {len(tets)} tets, {fmt(size[0] * 100, 3)} × {fmt(size[1] * 100, 3)} × "

@@ -4,6 +4,7 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from pipeline import plots
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 HEADERS = ["mesh", "source", "nodes", "tets", "boundary triangles", "volume (cm³)",
            "min tet volume (mm³)", "min dihedral (°)", "max dihedral (°)",
@@ -65,7 +66,7 @@ def report(ctx):
                      "Meshes used by the experiments. Counts and quality are measured on the "
                      "written mesh artifacts; the last column gives the paper's stated counts.")
     gallery = "\n".join(f"![{p}]({p})" for p in pictures)
-    ctx.out("summary.md").write_text(
+    write_text_atomic(ctx.out("summary.md"),
         "## Meshes\n\n" + md + "\nThe minimum altitude 3V/A is the length that limits the explicit "
         "time step (000 eq. 34). Pictures: " + ", ".join(f"[{p}](mesh/{p})" for p in pictures) + ".\n")
-    ctx.out("README.md").write_text("# Meshes\n\n" + md + "\n" + gallery + "\n")
+    write_text_atomic(ctx.out("README.md"), "# Meshes\n\n" + md + "\n" + gallery + "\n")

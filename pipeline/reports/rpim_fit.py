@@ -18,6 +18,7 @@ from pipeline.paths import RESULTS
 from pipeline.plots import figure, save
 from pipeline.reports.rpim_cv import describe_settings, settings_note, used_by_fit
 from pipeline.tables import fmt, write_table
+from pipeline.artifacts import write_text_atomic
 
 AXES = "xyz"
 MM = 1000.0  # millimetres per metre
@@ -691,4 +692,4 @@ def report(ctx):
                  "[fit_orders_and_conditioning](fit_orders_and_conditioning.md), [fit_runtime](fit_runtime.md), "
                  "[fit_ansys_check](fit_ansys_check.md). Plots: fit_deviation_force_{x,y,z}.png (Figs. 5–13), "
                  "fit_composite_*.png (Fig. 14), cv_*.png, fit_nonlinear_force_displacement.png.\n")
-    ctx.out("fit_summary.md").write_text("\n".join(lines))
+    write_text_atomic(ctx.out("fit_summary.md"), "\n".join(lines))

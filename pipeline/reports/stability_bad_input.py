@@ -1,6 +1,8 @@
-"""Bad-input corpus -> results/stability/bad_input.md/csv and summary_bad_input.md."""
+"""Bad-input corpus -> results/stability/bad_input.md/csv (by executable), bad_input_cases.md/csv
+(every case with its exit and line) and summary_bad_input.md."""
 from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 
 def passed(r):
@@ -22,6 +24,11 @@ def report(ctx):
                                    "output left behind", "known issues"], table,
                 "The bad-input corpus (tests/bad_input/): the contract is exit 2, one line naming the file, the JSON "
                 "pointer and what was expected, and no output file.")
+    write_table(ctx, "bad_input_cases", ["executable", "case", "what is wrong", "exit", "contract kept", "message"],
+                [[r["tool"], r["case"], r["why"], r["exit"], "yes" if passed(r) else "no", r["message"]]
+                 for r in rows if not r["good"]],
+                "Every case of the bad-input corpus (tests/bad_input/<executable>/cases.json) with the exit code and "
+                "the one line its executable gave.")
     failing = [r for r in rows if not r["good"] and not passed(r)]
     write_table(ctx, "bad_input_failures", ["executable", "case", "what is wrong", "exit", "message", "known issue"],
                 [[r["tool"], r["case"], r["why"], r["exit"], r["message"], r["known_issue"] or ""] for r in failing],
@@ -29,11 +36,13 @@ def report(ctx):
     total = sum(1 for r in rows if not r["good"])
     text = ["## Bad input", "",
             f"{total} malformed inputs for the {len(table)} executables ([summary](bad_input.md), "
+            "[every case](bad_input_cases.md), "
             f"[exceptions](bad_input_failures.md)): truncated and empty JSON, NaN and out-of-range numbers, missing, "
             "unknown and mistyped fields, ν ≥ 0.5, E ≤ 0, zero or negative sizes and volumes, repeated or "
             "out-of-range node indices, empty node sets, loads on fixed nodes, Δt above the limit, files that are "
             "not meshes, configs and artifacts nested tens of thousands deep, devices given as inputs "
-            "(/dev/zero), sizes whose run would exceed the memory limit, meshes whose tetrahedra round to zero "
+            "(/dev/zero), sizes whose run would exceed the memory limit (dense factorisations and series of "
+            "async_sim included), runs that would take hours (the work limit), meshes whose tetrahedra round to zero "
             "volume, integers beyond their 32-bit field, outputs that name an input.", "",
             f"In plain words: {total - len(failing)} of {total} are refused the way they should be — exit 2, one "
             "line naming the file, the JSON pointer and what was expected, no output file."]
@@ -41,8 +50,9 @@ def report(ctx):
         ran = sum(r["exit"] == 0 for r in failing)
         internal = sum(r["exit"] == 1 for r in failing)
         crashed = sum(r["exit"] not in (0, 1, 2, 3) for r in failing)
-        text.append(f"The {len(failing)} others are listed with their cause and fix ([exceptions](bad_input_failures.md)): "
+        others = "The other one is" if len(failing) == 1 else f"The {len(failing)} others are"
+        text.append(f"{others} listed with their cause and fix ([exceptions](bad_input_failures.md)): "
                     f"{ran} are accepted and run (exit 0), {internal} end as an internal error (exit 1) instead of "
                     f"exit 2" + (f", {crashed} crash" if crashed else "; none crashes") + ".")
-    ctx.out("summary_bad_input.md").write_text("\n".join(text) + "\n\n")
+    write_text_atomic(ctx.out("summary_bad_input.md"), "\n".join(text) + "\n\n")
     gather_summary(ctx)

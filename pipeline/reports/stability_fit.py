@@ -2,6 +2,7 @@
 fit_damping.md (+ CSV) and summary_fit.md."""
 from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 
 def orders_text(r):
@@ -73,5 +74,5 @@ def report(ctx):
              "astray by its start — only slowed by a large initial damping; the real dangers are orders the data "
              "cannot determine and raw monomials of SI coordinates, and marquardt_fit refuses both rather than "
              "write a meaningless model."]
-    ctx.out("summary_fit.md").write_text("\n".join(text) + "\n\n")
+    write_text_atomic(ctx.out("summary_fit.md"), "\n".join(text) + "\n\n")
     gather_summary(ctx)

@@ -2,6 +2,7 @@
 from pipeline import plots
 from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 
 def report(ctx):
@@ -45,5 +46,5 @@ def report(ctx):
              "million steps; the nonlinear kinds oscillate around it by the O(Δt²) error of the scheme with no "
              "systematic growth, and mass-proportional damping brings every kind to the static equilibrium. "
              "There is no single-precision path to compare: dhd_sim computes in double precision only."]
-    ctx.out("summary_longrun.md").write_text("\n".join(text) + "\n\n")
+    write_text_atomic(ctx.out("summary_longrun.md"), "\n".join(text) + "\n\n")
     gather_summary(ctx)

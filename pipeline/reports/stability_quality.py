@@ -2,6 +2,7 @@
 from pipeline import plots
 from pipeline.reports.stability_common import gather_summary
 from pipeline.tables import write_table
+from pipeline.artifacts import write_text_atomic
 
 
 def report(ctx):
@@ -67,5 +68,5 @@ def report(ctx):
         if r["case"] == "as read" and r.get("dt_critical"):
             text.append(f"- {r['mesh']}: smallest dihedral {r['min_dihedral_deg']:.1f}°, exact limit "
                         f"{r['dt_exact_linear'] / r['dt_critical']:.1f} × Δt_cr.")
-    ctx.out("summary_quality.md").write_text("\n".join(text) + "\n\n")
+    write_text_atomic(ctx.out("summary_quality.md"), "\n".join(text) + "\n\n")
     gather_summary(ctx)

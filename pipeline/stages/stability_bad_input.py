@@ -65,7 +65,8 @@ def run_case(tool, name, case, inputs, folder):
     args, config, out = case_command(tool, name, case, substitute, folder)
     proc = subprocess.run([str(tool_path(tool))] + args, cwd=ROOT, capture_output=True, text=True, timeout=120)
     lines = [l for l in proc.stderr.splitlines() if l.strip()]
-    named = all(f.replace("@CONFIG@", str(config)) in (lines[0] if lines else "") for f in case.get("expect", []))
+    named = all(substitute(f.replace("@CONFIG@", str(config))) in (lines[0] if lines else "")
+                for f in case.get("expect", []))
     row = {"tool": tool, "case": name, "why": case["why"], "good": bool(case.get("good")), "exit": proc.returncode,
            "lines": len(lines), "message": (lines[-1] if lines else "").replace(str(folder) + "/", ""),
            "named": named, "output_left": out.exists(), "known_issue": case.get("known_issue")}

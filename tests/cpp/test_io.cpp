@@ -17,6 +17,7 @@
 #include "softsim/io/mesh_artifact.hpp"
 #include "softsim/io/result_fields.hpp"
 #include "softsim/io/sha256.hpp"
+#include "softsim/io/utf8.hpp"
 
 #include "support/input_error.hpp"
 
@@ -249,4 +250,24 @@ TEST(GitCommit, FlagsADirtyTreeAndFallsBackToUnknown) {
   // The source tree gone (an installed binary on another machine): no commit, and no error.
   std::filesystem::remove_all(repo);
   EXPECT_EQ(io::describe_commit(repo.string()), "unknown");
+}
+
+TEST(Utf8, WellFormedTextPassesAndTheFirstBadByteIsFound) {
+  // What nlohmann::json will write (RFC 3629) is exactly what passes: every text it accepts
+  // here dumps, every text refused here would make the dump throw.
+  for (const std::string ok : {"", "region", "Gewebe \xC3\xA4", "\xE2\x82\xAC", "\xF0\x9F\x98\x80", "\xEF\xBF\xBF"}) {
+    EXPECT_EQ(io::first_invalid_utf8(ok), std::string::npos) << ok;
+    EXPECT_NO_THROW(nlohmann::json({{ok, 1}}).dump());
+  }
+  const std::pair<std::string, std::size_t> bad[] = {
+      {"r\xFF", 1},            // never a UTF-8 byte
+      {"ab\xC3", 2},           // a sequence cut short
+      {"\xC0\xAF", 0},         // overlong "/"
+      {"x\xED\xA0\x80", 1},    // a UTF-16 surrogate
+      {"\xF4\x90\x80\x80", 0}, // above U+10FFFF
+      {"\x80", 0}};            // a continuation byte alone
+  for (const auto& [text, at] : bad) {
+    EXPECT_EQ(io::first_invalid_utf8(text), at);
+    EXPECT_THROW(nlohmann::json({{text, 1}}).dump(), nlohmann::json::type_error);
+  }
 }

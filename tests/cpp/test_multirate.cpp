@@ -21,6 +21,7 @@
 #include "softsim/multirate/haptic_loop.hpp"
 #include "softsim/multirate/region_layout.hpp"
 #include "softsim/multirate/run_config.hpp"
+#include "softsim/multirate/run_memory.hpp"
 #include "softsim/multirate/setup_error.hpp"
 #include "softsim/multirate/stability.hpp"
 #include "softsim/multirate/whole_model.hpp"
@@ -753,4 +754,91 @@ TEST(RunConfig, ExplicitAtTheHapticRateOnAFineBarIsAnInputError) {
   const ReducedSystem sys = build_system(config, summary);
   EXPECT_LT(summary.explicit_limit_central, 1e-3);
   EXPECT_THROW(run_comparison(sys, config.comparison), InputError);
+}
+
+// ---------------------------------------------------------------- resources of a run
+
+namespace {
+// The config member a refused config names, or "" when it is accepted.
+std::string refused_at(const nlohmann::json& j) {
+  try {
+    read_run_config(io::JsonReader(j, "run.json"));
+  } catch (const ConfigInputError& e) {
+    return e.pointer;
+  }
+  return "";
+}
+
+double share_of(const std::vector<MemoryShare>& shares, const std::string& pointer) {
+  for (const MemoryShare& s : shares)
+    if (s.pointer == pointer) return s.bytes;
+  return 0.0;
+}
+
+template <typename T>
+double held(const std::vector<T>& v) { return static_cast<double>(v.capacity() * sizeof(T)); }
+}  // namespace
+
+TEST(RunResources, EstimateCoversTheRecordsARunKeeps) {
+  // The per-frame share must bound what the run really holds per frame: the three loops'
+  // records and the input frequency.
+  nlohmann::json j = base_config();
+  j["haptics"]["duration"] = 1.0;
+  const RunConfig config = read_run_config(io::JsonReader(j, "run.json"));
+  ModelSummary summary;
+  const ComparisonResult r = run_comparison(build_system(config, summary), config.comparison);
+  double kept = held(r.frequency);
+  for (const LoopRecord* rec : {&r.whole, &r.async, &r.exact})
+    kept += held(rec->probe) + held(rec->force) + held(rec->contact) + held(rec->primary_nodes);
+  const double estimate = share_of(estimate_run_memory(config), "/haptics/duration");
+  EXPECT_GE(estimate, kept);
+  EXPECT_LE(estimate, 1.5 * kept);  // an estimate, not a blanket refusal
+}
+
+TEST(RunResources, TheMemberSettingTheLargestShareIsNamed) {
+  nlohmann::json j = base_config();
+  EXPECT_EQ(refused_at(j), "");
+  // 1e7 frames kept every frame in the artifact: gigabytes of series (estimated on a config read
+  // short, so that the test does not depend on this machine's memory limit).
+  j["series_every"] = 1;
+  RunConfig config = read_run_config(io::JsonReader(j, "run.json"));
+  config.comparison.loop.frames = 10000000;
+  const std::vector<MemoryShare> shares = estimate_run_memory(config);
+  EXPECT_GT(share_of(shares, "/series_every"), 4e9);
+  EXPECT_GT(share_of(shares, "/series_every"), share_of(shares, "/haptics/duration"));
+  // A dense factorisation per size of an adaptive primary region of a 1e5-node bar: far beyond
+  // any machine, refused before anything is built.
+  j = base_config();
+  j["model"]["nodes"] = 100000;
+  j["reference"] = false;
+  j["linear_solver"] = "dense";
+  j["async"]["primary"] = {{"policy", "linear"}, {"min_nodes", 1}, {"max_nodes", 50000}, {"gradient", 1.0}};
+  EXPECT_EQ(refused_at(j), "/linear_solver");
+}
+
+TEST(RunResources, AnEndlessRunIsRefusedAtTheDuration) {
+  // 1e7 frames of the exact reference on 2000 DOFs: products of a 4000 x 4000 matrix every frame.
+  nlohmann::json j = base_config();
+  j["model"]["nodes"] = 2001;
+  j["haptics"]["duration"] = 1e4;
+  j["timing_repeats"] = 1;
+  EXPECT_EQ(refused_at(j), "/haptics/duration");
+  j["reference"] = false;  // the sparse bar alone: 4e10 element updates, under the limit
+  EXPECT_EQ(refused_at(j), "");
+}
+
+TEST(RunResources, ProgressCountsEveryFrameOfEveryLoop) {
+  nlohmann::json j = base_config();
+  j["haptics"]["duration"] = 2 * kProgressFrames / 1000.0;  // two reports a loop
+  j["timing_repeats"] = 2;
+  RunConfig config = read_run_config(io::JsonReader(j, "run.json"));
+  std::vector<long long> seen;
+  config.comparison.progress = [&](long long done, double) { seen.push_back(done); };
+  ModelSummary summary;
+  run_comparison(build_system(config, summary), config.comparison);
+  const long long total = total_loop_frames(config.comparison);
+  EXPECT_EQ(total, (2 * 2 + 1) * 2 * kProgressFrames);  // 2 repeats of whole and regions, the reference
+  ASSERT_EQ(seen.size(), 10u);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_EQ(seen.back(), total);
 }

@@ -97,7 +97,7 @@ def test_bad_input_exit_2_one_line_no_output(tool, name, case, inputs, tmp_path)
     line = lines[0]
     assert line.startswith(f"{tool}: error: "), line
     for fragment in case["expect"]:
-        fragment = fragment.replace("@CONFIG@", str(config))
+        fragment = inputs.substitute(fragment.replace("@CONFIG@", str(config)))
         assert fragment in line, f"{fragment!r} not in {line!r}"
     assert not out.exists(), "an output file was left behind"
 

@@ -6,9 +6,12 @@ import json
 import os
 import stat
 import subprocess
+import sys
 from pathlib import Path
 
-from conftest import run_pipeline, run_tool, tool, write_json
+import pytest
+
+from conftest import ROOT, run_pipeline, run_tool, tool, write_json
 
 CUBOID = {"source": {"kind": "cuboid", "cells": [2, 2, 2], "size": [0.02, 0.02, 0.02]}}
 QUICK = {"stages": {"cube": {"tool": "mesher", "config": {
@@ -53,7 +56,8 @@ def test_vtu_naming_the_out_file_is_refused(tmp_path):
 
 def test_a_failed_run_leaves_none_of_its_vtu_files(tmp_path):
     """A forced step above the stability limit blows up after some snapshots were written: exit
-    3, and neither the snapshots, the .pvd series nor the artifact are left."""
+    3, and neither the snapshots, the .pvd series nor the artifact are left; an earlier run's
+    artifact at --out, which this run did not create, stays as it was."""
     mesh = tmp_path / "mesh.json"
     assert run_tool("mesher", "--config", write_json(tmp_path / "m.json", CUBOID), "--out", mesh).returncode == 0
     keep = tmp_path / "notes.txt"
@@ -63,10 +67,13 @@ def test_a_failed_run_leaves_none_of_its_vtu_files(tmp_path):
         "boundary": {"fixed": ["bottom"], "prescribed": [{"set": "top", "displacement": [0, 0, -0.001]}]},
         "solver": {"kind": "explicit", "steps": 20000, "dt": 0.05, "force_dt": True},
         "output": {"vtu": str(tmp_path / "sim.vtu"), "vtu_interval": 1}})
-    r = run_tool("dhd_sim", "--config", cfg, "--out", tmp_path / "out.json")
+    earlier = tmp_path / "out.json"
+    earlier.write_text('{"an": "earlier artifact"}')
+    r = run_tool("dhd_sim", "--config", cfg, "--out", earlier)
     assert r.returncode == 3, r.stderr
     left = sorted(p.name for p in tmp_path.iterdir())
-    assert left == ["m.json", "mesh.json", "notes.txt", "run.json"], left
+    assert left == ["m.json", "mesh.json", "notes.txt", "out.json", "run.json"], left
+    assert earlier.read_text() == '{"an": "earlier artifact"}'
 
 
 def test_memory_estimate_over_the_limit_is_refused_before_building(tmp_path):
@@ -159,3 +166,100 @@ def test_playback_over_the_memory_limit_names_the_forces(tmp_path):
     assert not out.exists()
     r = run_tool("marquardt_fit", "play", "--config", cfg, "--out", out)
     assert r.returncode == 0, r.stderr
+
+
+# A full disk: every write of a report (Markdown, CSV, PNG, REPORT.md) gives up half-way with
+# ENOSPC. Run in a child so that the patches stay there.
+FULL_DISK = r'''
+import errno, pathlib, sys
+import matplotlib.figure
+
+def full(path, data):
+    with open(path, "wb") as f:
+        f.write(data[: len(data) // 2])
+    raise OSError(errno.ENOSPC, "No space left on device", str(path))
+
+if sys.argv[1] in ("text", "all"):
+    pathlib.Path.write_text = lambda self, text, *a, **k: full(self, text.encode())
+if sys.argv[1] in ("png", "all"):
+    matplotlib.figure.Figure.savefig = lambda self, path, *a, **k: full(path, b"\x89PNG" * 1000)
+from pipeline.cli import main
+sys.exit(main(sys.argv[2:]))
+'''
+
+
+def results_files(env):
+    root = Path(env["PIPELINE_RESULTS"])
+    return {p.relative_to(root): p.read_bytes() for p in root.rglob("*") if p.is_file()}
+
+
+@pytest.mark.parametrize("failing", ["text", "png"])
+def test_a_full_disk_while_writing_reports_is_one_line_and_keeps_the_old_reports(pipeline_env, failing):
+    tool("mesher")
+    doc = {**json.loads(json.dumps(QUICK))}
+    doc["stages"]["table"] = {"report": "pipeline.reports.meshes", "inputs": ["cube"], "params": {"order": ["cube"]}}
+    write_experiment(pipeline_env, "t", json.dumps(doc))
+    assert run_pipeline(pipeline_env, "run", "t").returncode == 0
+    before = results_files(pipeline_env)
+    assert any(p.suffix == ".png" for p in before) and any(p.name == "REPORT.md" for p in before), before.keys()
+    r = subprocess.run([sys.executable, "-c", FULL_DISK, failing, "run", "t", "--stage", "table"], cwd=ROOT,
+                       env=pipeline_env, capture_output=True, text=True, timeout=300)
+    assert r.returncode != 0 and "Traceback" not in r.stdout + r.stderr, r.stdout + r.stderr
+    # The report's run fails in its one line; REPORT.md, written after the runs, in one more.
+    [failed] = [l for l in r.stdout.splitlines() if "FAILED" in l]
+    assert "FAILED table: OSError: [Errno 28] No space left on device" in failed, failed
+    for line in r.stderr.splitlines():
+        assert line.startswith("pipeline: error: ") and line.endswith("REPORT.md: No space left on device"), line
+    assert len(r.stderr.splitlines()) == (1 if failing == "text" else 0), r.stderr
+    after = results_files(pipeline_env)
+    # Every report as it was and no temporary left. The manifest and REPORT.md, written whole
+    # after the runs, record the failed report (REPORT.md only when its own write succeeds).
+    rewritten = {"manifest.json"} | ({"REPORT.md"} if failing == "png" else set())
+    assert {p: b for p, b in after.items() if p.name not in rewritten} == \
+        {p: b for p, b in before.items() if p.name not in rewritten}
+    assert b'"status": "failed"' in after[Path("manifest.json")]
+
+
+def test_async_series_over_the_memory_limit_names_the_member_and_the_estimate(tmp_path):
+    """A long async_sim series is refused from its config, naming the member whose share of the
+    estimate is largest (the series, then the per-frame records), before any frame is run."""
+    cfg = json.loads((ROOT / "tests/bad_input/async_sim/good.json").read_text())
+    cfg["haptics"]["duration"] = 1000.0  # 1e6 frames
+    cfg["series_every"] = 1
+    path = write_json(tmp_path / "run.json", cfg)
+    out = tmp_path / "o.json"
+    env = dict(os.environ, SOFTSIM_MEMORY_LIMIT_MB="100")
+    r = subprocess.run([str(tool("async_sim")), "--config", str(path), "--out", str(out)],
+                       capture_output=True, text=True, env=env, timeout=60)
+    assert r.returncode == 2, r.stderr
+    line = one_error_line(r)
+    assert f"{path}: /series_every: expected a size whose run fits the memory limit: the run (mostly the time " \
+           "series in the artifact) would take about" in line, line
+    assert "the limit is 100.0 MiB (SOFTSIM_MEMORY_LIMIT_MB)" in line
+    del cfg["series_every"]
+    r = subprocess.run([str(tool("async_sim")), "--config", str(write_json(path, cfg)), "--out", str(out)],
+                       capture_output=True, text=True, env=dict(env, SOFTSIM_MEMORY_LIMIT_MB="10"), timeout=60)
+    assert r.returncode == 2 and f"{path}: /haptics/duration: expected a size whose run fits" in one_error_line(r)
+    assert not out.exists()
+
+
+def test_a_report_writing_through_its_out_path_writes_atomically(tmp_path, monkeypatch):
+    """ctx.out gives a path whose write_text is atomic: a report that writes
+    `ctx.out("summary.md").write_text(text)` on a full disk leaves the earlier file whole."""
+    import errno
+    import pathlib
+    from pipeline.artifacts import ResultPath
+    out = ResultPath(tmp_path) / "summary.md"
+    out.write_text("the earlier summary\n")
+
+    def full(self, text, *args, **kwargs):
+        pathlib.Path.write_bytes(self, text.encode()[:5])
+        raise OSError(errno.ENOSPC, "No space left on device", str(self))
+    monkeypatch.setattr(pathlib.Path, "write_text", full)
+    try:
+        out.write_text("a new summary, longer than the disk allows\n")
+        raise AssertionError("the full disk went unnoticed")
+    except OSError as e:
+        assert e.errno == errno.ENOSPC and e.filename == str(out)
+    assert out.read_text() == "the earlier summary\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["summary.md"]

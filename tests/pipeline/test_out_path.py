@@ -1,5 +1,6 @@
-"""The --out file of every executable (app.cpp): a failed run removes it, so --out must not name
-the config, an input or a directory (the failure would delete the user's file); such an --out,
+"""The --out file of every executable (app.cpp): --out must not name the config, an input or a
+directory (success would overwrite the user's file); a failed run removes only what it wrote and
+leaves an earlier run's artifact at --out as it was. Such an --out,
 an --out or --config given twice, or a --config naming a directory, is bad input (exit 2, one
 line) and leaves every file as it was."""
 import json
@@ -53,12 +54,15 @@ def test_out_naming_an_input_keeps_the_input(tmp_path):
     assert mesh.read_bytes() == before
 
 
-def test_a_failed_run_still_removes_a_stale_output(tmp_path):
+def test_a_failed_run_leaves_an_earlier_output_untouched(tmp_path):
+    """The run did not create the file at --out, so failing must not remove or change it: the
+    exit code says the run failed, the earlier artifact stays the earlier run's."""
     out = tmp_path / "out.json"
     out.write_text("an artifact of an earlier run")
     r = run_tool("mesher", "--config", write_json(tmp_path / "c.json", BROKEN), "--out", out)
     assert_refused(r, "/source/size: missing required field")
-    assert not out.exists()
+    assert out.read_text() == "an artifact of an earlier run"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.json", "out.json"]
 
 
 def test_out_or_config_given_twice(tmp_path):

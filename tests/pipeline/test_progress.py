@@ -84,3 +84,31 @@ def test_terminal_counts_every_run_once_with_an_eta(pipeline_env):
         # The per-run lines stay on stdout, none lost to the bar.
         assert sum(bool(PLAIN_LINE.match(line)) for line in stdout.splitlines()) == 5, stdout
         assert f"{outcome} cube#0" in stdout and "FAILED bad" in stdout and "skipped table" in stdout
+
+
+def test_async_sim_draws_frames_on_a_terminal_and_nothing_elsewhere(tmp_path):
+    """async_sim's progress line counts the frames of every loop (timed repeats of whole and
+    regions, then the reference) up to their total; off a terminal stderr has only its summary."""
+    from conftest import tool, write_json
+    cfg = json.loads((ROOT / "tests/bad_input/async_sim/good.json").read_text())
+    cfg["haptics"]["duration"] = 20.0  # 20000 frames a loop: 3 loops, several reports
+    path = write_json(tmp_path / "run.json", cfg)
+    cmd = [str(tool("async_sim")), "--config", str(path), "--out", str(tmp_path / "o.json")]
+    master, slave = pty.openpty()
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=slave)
+    os.close(slave)
+    received = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        received += chunk
+    os.close(master)
+    assert proc.wait(timeout=300) == 0
+    frames = [int(m.group(1)) for m in re.finditer(rb"async_sim: frame (\d+) / 60000 \(t = ", received)]
+    assert frames and frames[-1] == 60000 and frames == sorted(frames), received[-400:]
+    quiet = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert quiet.returncode == 0 and "frame" not in quiet.stderr and len(quiet.stderr.splitlines()) == 1, quiet.stderr

@@ -80,14 +80,13 @@ std::string out_path_conflict(const AppContext& ctx) {
   return output_conflict(ctx, ctx.out_path, "command line: --out " + ctx.out_path, "");
 }
 
-// A failed run removes every file it put in place (VTU snapshots written before the failure,
-// say), and a regular file at --out, so that no stale artifact of an earlier run is taken for
-// this run's. Nothing else: not an --out that was refused, not a device, not an input.
-void remove_failed_output(const AppContext& ctx) {
+// A failed run removes the files it put in place (VTU snapshots written before the failure, say)
+// and nothing else: not an --out that was refused, not a device, not an input, and not an earlier
+// run's artifact at --out, which this run never replaced (the artifact is written last, by one
+// rename) and which stays as it was; the exit code, not the file's presence, says whether this
+// run succeeded.
+void remove_failed_output() {
   for (const std::string& written : io::written_files()) std::remove(written.c_str());
-  std::error_code ec;
-  if (!ctx.out_path.empty() && std::filesystem::is_regular_file(ctx.out_path, ec) && out_path_conflict(ctx).empty())
-    std::remove(ctx.out_path.c_str());
 }
 
 }  // namespace
@@ -155,20 +154,20 @@ int run_app(int argc, char** argv, const AppInfo& info,
     if (const auto* at = dynamic_cast<const ConfigInputError*>(&e))
       std::cerr << ctx.config_path << ": " << at->pointer << ": ";
     std::cerr << e.what() << "\n";
-    remove_failed_output(ctx);
+    remove_failed_output();
     return 2;
   } catch (const NumericalError& e) {
     std::cerr << info.name << ": numerical failure: " << e.what() << "\n";
-    remove_failed_output(ctx);
+    remove_failed_output();
     return 3;
   } catch (const std::bad_alloc&) {
     std::cerr << info.name << ": internal error: out of memory (the run's memory estimate passed the limit: "
               << "lower SOFTSIM_MEMORY_LIMIT_MB to what this machine can give)\n";
-    remove_failed_output(ctx);
+    remove_failed_output();
     return 1;
   } catch (const std::exception& e) {
     std::cerr << info.name << ": internal error: " << e.what() << "\n";
-    remove_failed_output(ctx);
+    remove_failed_output();
     return 1;
   }
 }

@@ -46,6 +46,18 @@ double max_element_updates() {
   return v;
 }
 
+double gmsh_timeout_seconds() {
+  const char* text = std::getenv("SOFTSIM_GMSH_TIMEOUT_S");
+  if (!text || !*text) return 600.0;
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  // alarm() counts whole seconds, at most about 136 years of them in an unsigned.
+  if (end == text || *end != '\0' || !(v >= 1) || !(v <= 1e9))
+    throw InputError(std::string("environment: SOFTSIM_GMSH_TIMEOUT_S: expected a number of seconds from 1 to 1e9, got \"") +
+                     text + "\"");
+  return std::floor(v);
+}
+
 void require_work(const JsonReader& at, const std::string& key, double element_updates) {
   const double limit = max_element_updates();
   if (element_updates <= limit) return;

@@ -9,6 +9,8 @@
 //   SOFTSIM_MAX_ELEMENT_UPDATES  most element updates a simulation may ask for (default 1e11:
 //                           about half an hour of one core on the TLED kernel), so that a step
 //                           count of 2^31 is refused rather than run for hours
+//   SOFTSIM_GMSH_TIMEOUT_S  wall-clock seconds Gmsh may take to fill a surface with tetrahedra
+//                           (default 600; meshing/bounded_child.hpp)
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -25,6 +27,7 @@ constexpr std::size_t kMaxJsonDepth = 64;
 std::uint64_t max_input_bytes();
 std::uint64_t memory_limit_bytes();
 double max_element_updates();
+double gmsh_timeout_seconds();
 
 // Refuses a run whose work (element updates: steps x elements) exceeds max_element_updates(),
 // naming the member `key` of `at` that sets it.

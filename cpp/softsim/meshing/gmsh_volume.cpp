@@ -10,6 +10,7 @@
 #include "softsim/io/atomic_file.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/io/limits.hpp"
+#include "softsim/meshing/bounded_child.hpp"
 #include "softsim/mesh/obj_reader.hpp"
 
 namespace softsim::meshing {
@@ -115,8 +116,6 @@ mesh::TetMesh mesh_volume(double target_edge) {
     for (int c = 0; c < 4; ++c) t[c] = index_of.at(tet_nodes[4 * e + c]);
     m.tets.push_back(t);
   }
-  m.element_tags["physical"] = std::vector<int>(m.tets.size(), 1);
-  m.element_tags["region"] = m.element_tags["physical"];
   mesh::drop_unused_nodes(m);
   return m;
 }
@@ -130,25 +129,32 @@ mesh::TetMesh volume_from_surface(const std::string& path, double target_edge) {
   // Read (and check) an OBJ file before Gmsh starts: its errors name the line.
   const mesh::TriangleSurface obj =
       ext == ".obj" ? mesh::read_obj(io::read_text_file(path), path) : mesh::TriangleSurface();
-  GmshSession session;
-  mesh::TetMesh m;
-  try {
-    gmsh::model::add("surface");
-    if (ext == ".obj")
-      add_obj_surface(obj);
-    else
-      gmsh::merge(path);
-    gmsh::vectorpair surfaces;
-    gmsh::model::getEntities(surfaces, 2);
-    if (surfaces.empty()) throw std::string("no triangles in the file");
-    m = mesh_volume(target_edge);
-  } catch (const std::string& complaint) {
-    throw InputError(path + ": expected a closed triangle surface Gmsh can fill with tetrahedra, got \"" +
-                     trimmed(complaint) + "\"");
-  }
-  if (m.tets.empty())
-    throw InputError(path + ": expected a closed triangle surface Gmsh can fill with tetrahedra, got no tetrahedra (" +
-                     trimmed(GmshSession::last_complaint()) + ")");
+  // In a child with a time limit (bounded_child.hpp): Gmsh may never finish.
+  mesh::TetMesh m = mesh_in_bounded_child([&] {
+    GmshSession session;
+    mesh::TetMesh volume;
+    try {
+      gmsh::model::add("surface");
+      if (ext == ".obj")
+        add_obj_surface(obj);
+      else
+        gmsh::merge(path);
+      gmsh::vectorpair surfaces;
+      gmsh::model::getEntities(surfaces, 2);
+      if (surfaces.empty()) throw std::string("no triangles in the file");
+      volume = mesh_volume(target_edge);
+    } catch (const std::string& complaint) {
+      throw InputError(path + ": expected a closed triangle surface Gmsh can fill with tetrahedra, got \"" +
+                       trimmed(complaint) + "\"");
+    }
+    if (volume.tets.empty())
+      throw InputError(path + ": expected a closed triangle surface Gmsh can fill with tetrahedra, got no tetrahedra (" +
+                       trimmed(GmshSession::last_complaint()) + ")");
+    return volume;
+  });
+  // One physical volume, as a Gmsh file with one would carry (the child sends nodes and tets).
+  m.element_tags["physical"] = std::vector<int>(m.tets.size(), 1);
+  m.element_tags["region"] = m.element_tags["physical"];
   return m;
 }
 

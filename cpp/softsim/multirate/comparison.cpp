@@ -15,10 +15,17 @@ namespace softsim::multirate {
 
 namespace {
 
-double timed_run(FrameStepper& stepper, const ProbeSignal& signal, const HapticLoopSpec& loop, LoopRecord& record) {
+double timed_run(FrameStepper& stepper, const ProbeSignal& signal, const HapticLoopSpec& loop, LoopRecord& record,
+                 const std::function<void(long long, double)>& progress, long long& frames_done) {
   stepper.reset();
+  HapticLoopSpec loop_spec = loop;  // progress counted over every loop of the run
+  if (progress) {
+    const long long before = frames_done;
+    loop_spec.progress = [&progress, before](long n, double t) { progress(before + n, t); };
+  }
+  frames_done += loop.frames;
   const auto start = std::chrono::steady_clock::now();
-  run_haptic_loop(stepper, signal, loop, record);
+  run_haptic_loop(stepper, signal, loop_spec, record);
   const auto stop = std::chrono::steady_clock::now();
   return std::chrono::duration<double>(stop - start).count() / static_cast<double>(loop.frames);
 }
@@ -42,6 +49,11 @@ double contact_compliance(const ReducedSystem& system, int contact_free_node, co
   f.segment(contact_free_node * p, p) = e;
   const Eigen::VectorXd u = ldlt->solve(f);
   return e.dot(u.segment(contact_free_node * p, p));
+}
+
+long long total_loop_frames(const ComparisonSpec& spec) {
+  const long long loops = std::max(1, spec.timing_repeats) * (spec.async ? 2LL : 1LL) + (spec.reference ? 1 : 0);
+  return loops * spec.loop.frames;
 }
 
 ComparisonResult run_comparison(const ReducedSystem& system, const ComparisonSpec& spec) {
@@ -70,11 +82,12 @@ ComparisonResult run_comparison(const ReducedSystem& system, const ComparisonSpe
 
   // Whole and asynchronous runs alternate so that slow drifts of the machine hit both alike.
   const int repeats = std::max(1, spec.timing_repeats);
+  long long frames_done = 0;
   double whole_best = std::numeric_limits<double>::infinity();
   double async_best = std::numeric_limits<double>::infinity();
   for (int r = 0; r < repeats; ++r) {
-    whole_best = std::min(whole_best, timed_run(whole, spec.signal, loop, result.whole));
-    if (async) async_best = std::min(async_best, timed_run(*async, spec.signal, loop, result.async));
+    whole_best = std::min(whole_best, timed_run(whole, spec.signal, loop, result.whole, spec.progress, frames_done));
+    if (async) async_best = std::min(async_best, timed_run(*async, spec.signal, loop, result.async, spec.progress, frames_done));
   }
   result.whole_summary = summarise(result.whole, whole_best);
   if (async) result.async_summary = summarise(result.async, async_best);
@@ -88,7 +101,7 @@ ComparisonResult run_comparison(const ReducedSystem& system, const ComparisonSpe
   if (spec.reference) {
     ExactReference exact(system, spec.contact_free_node, loop.frame_step);
     result.loop_spectral_radius = exact.loop_spectral_radius(loop.probe_stiffness);
-    const double seconds = timed_run(exact, spec.signal, loop, result.exact);
+    const double seconds = timed_run(exact, spec.signal, loop, result.exact, spec.progress, frames_done);
     result.exact_summary = summarise(result.exact, seconds);
     result.whole_vs_exact = force_error(result.whole.force, result.exact.force);
     if (periodic)

@@ -5,6 +5,7 @@
 //   - the exact solution of the same discrete system (optional),
 // with the force errors, peak forces and the run time per frame of whole and asynchronous
 // solves measured in the same process (reported as a ratio: the speed gain).
+#include <functional>
 #include <optional>
 
 #include "softsim/multirate/async_solver.hpp"
@@ -26,7 +27,13 @@ struct ComparisonSpec {
   HapticLoopSpec loop;
   int timing_repeats = 3;          // each timed loop runs this often; the fastest run counts
   double frequency_bin = 0.5;      // Hz, for error_by_frequency of periodic inputs
+  // Frames done over all loops of the run (of total_loop_frames) and the simulated time of the
+  // current loop, every kProgressFrames frames; empty: never.
+  std::function<void(long long, double)> progress;
 };
+
+// Frames the run steps in all: every timed repeat of whole and regions, and the reference.
+long long total_loop_frames(const ComparisonSpec& spec);
 
 struct SignalSummary {
   double peak_force = 0.0;               // N

@@ -41,6 +41,8 @@ void run_haptic_loop(FrameStepper& stepper, const ProbeSignal& signal, const Hap
     record.force[n] = out;
     record.contact[n] = along;
     record.primary_nodes[n] = stepper.primary_nodes();
+    if (spec.progress && ((n + 1) % kProgressFrames == 0 || n + 1 == frames))
+      spec.progress(static_cast<long>(n + 1), static_cast<double>(n + 1) * spec.frame_step);
   }
 }
 

@@ -6,6 +6,7 @@
 //   3. advance the model one frame with f held constant,
 //   4. send back the force of the same spring at the updated contact position,
 //      F = e . k_s (p e - u_c+)   (the haptic output, recorded).
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,7 +24,12 @@ struct HapticLoopSpec {
   // The loop is declared unstable (NumericalError) when the contact displacement exceeds this
   // multiple of the probe amplitude: a passive model pulled by a spring cannot get there.
   double blow_up_factor = 1e3;
+  // Called every kProgressFrames frames and after the last with the frames done so far in this
+  // loop and the simulated time (a progress line for long runs); empty: never.
+  std::function<void(long, double)> progress;
 };
+
+inline constexpr long kProgressFrames = 4096;
 
 struct LoopRecord {
   std::vector<double> probe;          // p at each frame (m)

@@ -7,6 +7,7 @@
 #include "softsim/io/errors.hpp"
 #include "softsim/multirate/exact_reference.hpp"
 #include "softsim/multirate/force_metrics.hpp"
+#include "softsim/multirate/run_memory.hpp"
 #include "softsim/multirate/stability.hpp"
 
 namespace softsim::multirate {
@@ -212,6 +213,7 @@ RunConfig read_run_config(const JsonReader& cfg) {
   }
   c.comparison.contact_free_node = free_nodes - 1;  // the bar's free end (model node N-1)
   cfg.reject_unknown();
+  require_run_resources(c);  // before the model or any record is allocated
   return c;
 }
 
