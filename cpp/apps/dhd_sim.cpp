@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   info.summary = "dual-mode hybrid FEM (" + kinds_in_words() + " elements), explicit or static (paper 000)";
   info.flags = {"--bench", "--cut-bench"};
   info.config_help =
-      "  {\"mesh\": tet_mesh artifact, \"material\": {\"model\", \"E\", \"nu\", \"density\" | mooney_rivlin: \"C10\", \"C01\", \"K\", \"density\"}, \"damping\": {\"alpha\"},\n"
+      "  {\"mesh\": tet_mesh artifact, \"material\": {\"model\", \"E\", \"nu\", \"density\" | mooney_rivlin: \"C10\", \"C01\", \"K\", \"density\" | ogden: \"mu\", \"alpha\", \"K\", \"density\"}, \"damping\": {\"alpha\"},\n"
       "   \"partition\": {\"kind\": uniform|layers|linear_fraction|tags|sphere|strain, ...},\n"
       "   \"boundary\": {\"fixed\", \"prescribed\", \"forces\", \"gravity\", \"probe\"},\n"
       "   \"solver\": {\"kind\": explicit|static, \"steps\", \"dt\" | \"safety_factor\", \"force_dt\", \"increments\", ...},\n"

@@ -179,6 +179,7 @@ MODEL_WORDS = {
     "neo_hookean_paper": "the paper's neo-Hookean form (000 eq. 22)",
     "neo_hookean_decoupled": "the decoupled neo-Hookean form of CalculiX and of Miller's TLED",
     "mooney_rivlin": "the decoupled Mooney–Rivlin law (CalculiX's MOONEY-RIVLIN)",
+    "ogden": "the decoupled Ogden law (CalculiX's OGDEN)",
     "linear": "linear elasticity",
 }
 

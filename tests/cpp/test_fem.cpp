@@ -39,22 +39,31 @@ using test_scenes::kPaper;
 using test_scenes::max_abs;
 
 // An element formulation and the law it runs: a neo-Hookean form, or (mooney_rivlin) the
-// Mooney–Rivlin law with the same small-strain μ and K split between C10 and C01.
+// Mooney–Rivlin law with the same small-strain μ and K split between C10 and C01, or (ogden) a
+// three-term Ogden law with that μ = ½ Σ μ_p α_p and K.
 struct KindForm {
   ElementKind kind;
   material::NeoHookeanForm form;
   bool mooney_rivlin = false;
+  bool ogden = false;
 };
 fem::Material material_of(const KindForm& kf) {
-  if (!kf.mooney_rivlin) return fem::Material::make(kPaper, kf.form);
   const double mu = material::lame_parameters(kPaper).mu;
+  if (kf.ogden) {
+    const material::Ogden law{3, {1.2 * mu, 0.02 * mu, -0.04 * mu}, {1.5, 6.0, -2.0}, material::bulk_modulus(kPaper)};
+    return fem::Material::make(material::small_strain_parameters(law, kPaper.density), law);
+  }
+  if (!kf.mooney_rivlin) return fem::Material::make(kPaper, kf.form);
   const material::MooneyRivlin law{0.3 * mu, 0.2 * mu, material::bulk_modulus(kPaper)};
   return fem::Material::make(material::small_strain_parameters(law, kPaper.density), law);
 }
 std::string name_of(const KindForm& kf) {
   const bool finite_strain = kf.kind == ElementKind::tled || kf.kind == ElementKind::anp;
   return std::string(fem::kind_name(kf.kind)) +
-         (!finite_strain ? std::string() : kf.mooney_rivlin ? "_mooney_rivlin" : "_" + material::form_name(kf.form));
+         (!finite_strain  ? std::string()
+          : kf.ogden       ? "_ogden"
+          : kf.mooney_rivlin ? "_mooney_rivlin"
+                             : "_" + material::form_name(kf.form));
 }
 const std::vector<KindForm> kAllKinds = {{ElementKind::linear, material::NeoHookeanForm::paper},
                                          {ElementKind::tled, material::NeoHookeanForm::paper},
@@ -65,6 +74,9 @@ const std::vector<KindForm> kAllKinds = {{ElementKind::linear, material::NeoHook
 // The second law behind the same interface: the generic kernel, assembly and tangent.
 const std::vector<KindForm> kMooneyRivlinKinds = {{ElementKind::tled, material::NeoHookeanForm::decoupled, true},
                                                   {ElementKind::anp, material::NeoHookeanForm::decoupled, true}};
+// The third, written in principal stretches (an eigen-decomposition per element).
+const std::vector<KindForm> kOgdenKinds = {{ElementKind::tled, material::NeoHookeanForm::decoupled, false, true},
+                                           {ElementKind::anp, material::NeoHookeanForm::decoupled, false, true}};
 
 // A homogeneous deformation with stretch, shear and a 40° rotation (J ≈ 0.87).
 Eigen::Matrix3d general_F() {
@@ -201,6 +213,8 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, Kinds, ::testing::ValuesIn(kAllKinds),
                          [](const auto& info) { return name_of(info.param); });
 INSTANTIATE_TEST_SUITE_P(MooneyRivlin, Kinds, ::testing::ValuesIn(kMooneyRivlinKinds),
                          [](const auto& info) { return name_of(info.param); });
+INSTANTIATE_TEST_SUITE_P(Ogden, Kinds, ::testing::ValuesIn(kOgdenKinds),
+                         [](const auto& info) { return name_of(info.param); });
 
 TEST(ElementSet, MooneyRivlinWithoutC01EqualsTheDecoupledNeoHookeanKernelsToRoundOff) {
   // The generic kernel with C01 = 0 against the hand-written decoupled neo-Hookean kernels, for
@@ -221,6 +235,26 @@ TEST(ElementSet, MooneyRivlinWithoutC01EqualsTheDecoupledNeoHookeanKernelsToRoun
   const double scale = max_abs(fa);
   ASSERT_GT(scale, 0);
   for (std::size_t q = 0; q < fa.size(); ++q) EXPECT_NEAR(fb[q], fa[q], 1e-13 * scale) << "dof " << q;
+}
+
+TEST(ElementSet, OgdenWithAlphaPlusMinusTwoEqualsTheMooneyRivlinKernelsToRoundOff) {
+  // α = (2, −2), μ = (2 C10, −2 C01): the eigen-decomposition kernel against the invariant one,
+  // for TLED and ANP elements side by side.
+  const auto m = cuboid(3, 3, 2, 0.03, 0.03, 0.02);
+  std::vector<ElementKind> kinds(m.num_tets(), ElementKind::tled);
+  for (int e = 0; e < m.num_tets(); e += 2) kinds[e] = ElementKind::anp;
+  const double mu = material::lame_parameters(kPaper).mu;
+  const material::MooneyRivlin mr_law{0.3 * mu, 0.2 * mu, material::bulk_modulus(kPaper)};
+  const material::Ogden og_law{2, {2.0 * mr_law.c10, -2.0 * mr_law.c01}, {2.0, -2.0}, mr_law.bulk};
+  fem::ElementSet a(m, kinds, fem::Material::make(kPaper, mr_law)), b(m, kinds, fem::Material::make(kPaper, og_law));
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> d(-0.002, 0.002);
+  std::vector<double> u = affine_field(m, general_F());
+  for (double& x : u) x += d(rng);
+  const std::vector<double> fa = gathered_forces(a, u), fb = gathered_forces(b, u);
+  const double scale = max_abs(fa);
+  ASSERT_GT(scale, 0);
+  for (std::size_t q = 0; q < fa.size(); ++q) EXPECT_NEAR(fb[q], fa[q], 1e-12 * scale) << "dof " << q;
 }
 
 TEST(RigidRotation, NinetyDegreesIsForceFreeForTledCorotationalAndAnpButNotLinear) {

@@ -1,8 +1,8 @@
 #pragma once
 // One material seen by every element formulation (element_kind.hpp): the constitutive law is
 // chosen apart from the formulation. TLED elements use the material's hyperelastic law
-// (material/hyperelastic.hpp: neo-Hookean in either form, Mooney–Rivlin, ...); ANP elements its
-// isochoric part only — their volumetric part U(J) lives at the nodes (nodal_pressure.hpp);
+// (material/hyperelastic.hpp: neo-Hookean in either form, Mooney–Rivlin, Ogden, ...); ANP
+// elements its isochoric part only — their volumetric part U(J) lives at the nodes (nodal_pressure.hpp);
 // linear and corotational elements use the small-strain law with the (μ, λ) the law linearises
 // to. Everything element-local is expressed as P(F), W(F) and dP(F)[dF].
 #include <Eigen/Core>

@@ -93,16 +93,38 @@ std::array<bool, 3> read_components(const io::JsonReader& r) {
   return c;
 }
 
+// Ogden's terms: "mu" and "alpha", arrays of one length 1..3, every alpha non-zero (W divides
+// by it), sum mu_p alpha_p > 0 (the small-strain shear modulus is half of it), "K" > 0.
+material::Ogden read_ogden(const io::JsonReader& m) {
+  material::Ogden law;
+  const std::vector<double> mu = m.get_doubles("mu");
+  m.require(!mu.empty() && mu.size() <= material::Ogden::kMaxTerms, "mu", "an array of 1 to 3 numbers");
+  const std::vector<double> alpha = m.get_doubles("alpha");
+  m.require(alpha.size() == mu.size(), "alpha", "an array of the same length as mu");
+  law.terms = static_cast<int>(mu.size());
+  for (int p = 0; p < law.terms; ++p) {
+    if (alpha[p] == 0.0) m.at("alpha")[p].fail("a non-zero exponent");
+    law.mu[p] = mu[p];
+    law.alpha[p] = alpha[p];
+  }
+  m.require(law.shear_modulus() > 0 && std::isfinite(law.shear_modulus()), "mu",
+            "terms with sum mu_p alpha_p > 0 (the shear modulus is half of it)");
+  law.bulk = m.get_positive("K");
+  return law;
+}
+
 // The constitutive law of the TLED and ANP elements (material/hyperelastic.hpp), apart from
 // the element formulation the partition chooses: a neo-Hookean form with (E, ν), or
-// Mooney–Rivlin with (C10, C01, K), whose small-strain (E, ν) the linear and corotational
+// Mooney–Rivlin with (C10, C01, K), or Ogden with (mu[], alpha[], K), whose small-strain (E, ν) the linear and corotational
 // elements and the stable step use.
 void read_material(const io::JsonReader& cfg, DhdConfig& c) {
   material::ElasticParameters p;
   material::MooneyRivlin mooney_rivlin;
+  material::Ogden ogden;
   if (auto m = cfg.optional("material")) {
     c.model_defaulted = !m->has("model");
-    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "linear"}, c.model);
+    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden", "linear"},
+                             c.model);
     if (c.model == "mooney_rivlin") {
       mooney_rivlin.c10 = m->get_double("C10");
       mooney_rivlin.c01 = m->get_double("C01");
@@ -110,6 +132,12 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
       mooney_rivlin.bulk = m->get_positive("K");
       p.density = m->get_positive("density", p.density);
       p = material::small_strain_parameters(mooney_rivlin, p.density);
+      m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
+                 "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+    } else if (c.model == "ogden") {
+      ogden = read_ogden(*m);
+      p.density = m->get_positive("density", p.density);
+      p = material::small_strain_parameters(ogden, p.density);
       m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
                  "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
     } else {
@@ -127,6 +155,8 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
   c.linear_material = c.model == "linear";
   if (c.model == "mooney_rivlin")
     c.material = fem::Material::make(p, mooney_rivlin);
+  else if (c.model == "ogden")
+    c.material = fem::Material::make(p, ogden);
   else
     c.material = fem::Material::make(p, c.model == "neo_hookean_decoupled" ? material::NeoHookeanForm::decoupled
                                                                            : material::NeoHookeanForm::paper);

@@ -109,6 +109,10 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
     p["material"]["C10"] = mr->c10;
     p["material"]["C01"] = mr->c01;
   }
+  if (const auto* og = std::get_if<material::Ogden>(&m.law)) {
+    p["material"]["mu_p"] = std::vector<double>(og->mu.begin(), og->mu.begin() + og->terms);
+    p["material"]["alpha_p"] = std::vector<double>(og->alpha.begin(), og->alpha.begin() + og->terms);
+  }
   p["mesh"] = {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}};
   nlohmann::json reactions = nlohmann::json::array();
   const auto& rs = run.explicit_result ? run.explicit_result->reactions : run.static_result->reactions;

@@ -35,7 +35,8 @@
 // Not covered yet: a law with internal variables (viscoelasticity: per-element state updated
 // each step) or with a direction (anisotropy: a fibre direction per element) needs that state
 // stored per element slot and passed beside F; Ogden-type laws written in principal stretches
-// fit the interface as it is (P and dP from the eigen-decomposition of C). The neo-Hookean law keeps its hand-written vectorised kernels
+// fit the interface as it is (P and dP from the eigen-decomposition of C: ogden.hpp). The
+// neo-Hookean law keeps its hand-written vectorised kernels
 // (fem/element_kernels.hpp); any other law runs the generic kernel, vectorised as far as its
 // first_piola allows.
 #include <string>
@@ -45,13 +46,15 @@
 
 #include "softsim/material/mooney_rivlin.hpp"
 #include "softsim/material/neo_hookean.hpp"
+#include "softsim/material/ogden.hpp"
 
 namespace softsim::material {
 
-using HyperelasticLaw = std::variant<NeoHookean, MooneyRivlin>;
-using HyperelasticLinearisation = std::variant<NeoHookeanLinearisation, MooneyRivlinLinearisation>;
+using HyperelasticLaw = std::variant<NeoHookean, MooneyRivlin, Ogden>;
+using HyperelasticLinearisation = std::variant<NeoHookeanLinearisation, MooneyRivlinLinearisation,
+                                               OgdenLinearisation>;
 
-// "neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin": the config's material.model.
+// "neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden": the config's material.model.
 std::string law_name(const HyperelasticLaw& law);
 
 // The interface above on the variant: one dispatch per call, for the paths that take one
