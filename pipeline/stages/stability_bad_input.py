@@ -56,6 +56,12 @@ def case_command(tool, name, case, substitute, folder):
     return args, config, out
 
 
+def machine_free(message, folder):
+    """A tool's line as the results show it: the scratch folder and this checkout's location
+    replaced by names, so the table reads the same on every machine."""
+    return message.replace(str(folder), "<scratch folder>").replace(str(ROOT), "<repository>")
+
+
 def run_case(tool, name, case, inputs, folder):
     def substitute(text):
         for key, path in inputs.items():
@@ -68,7 +74,7 @@ def run_case(tool, name, case, inputs, folder):
     named = all(substitute(f.replace("@CONFIG@", str(config))) in (lines[0] if lines else "")
                 for f in case.get("expect", []))
     row = {"tool": tool, "case": name, "why": case["why"], "good": bool(case.get("good")), "exit": proc.returncode,
-           "lines": len(lines), "message": (lines[-1] if lines else "").replace(str(folder) + "/", ""),
+           "lines": len(lines), "message": machine_free((lines[-1] if lines else "").replace(str(folder) + "/", ""), folder),
            "named": named, "output_left": out.exists(), "known_issue": case.get("known_issue")}
     if out.exists():
         out.unlink()
