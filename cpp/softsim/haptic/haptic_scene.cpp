@@ -59,6 +59,7 @@ void HapticScene::reset() {
 void HapticScene::back_to_rest() {
   model_->reset();  // cuts are permanent: the model returns to rest with its cut mesh
   in_contact_ = false;
+  tool_touching_ = false;
   contact_ = SurfacePoint();
   has_previous_tip_ = false;
 }
@@ -121,7 +122,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       model_->step(substeps_);
       follow_cuts();
       const Eigen::Vector3d f = model_->solver().tool_force(0);
-      in_contact_ = model_->solver().tool_contacts(0) > 0;
+      tool_touching_ = model_->solver().tool_contacts(0) > 0;
       return f;
     }
     update_contact(probe, model_->displacement());

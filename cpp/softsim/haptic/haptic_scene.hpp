@@ -62,7 +62,9 @@ class HapticScene {
   int substeps() const { return substeps_; }
   double dt() const { return model_->dt(); }
   long frames_done() const { return frames_; }
-  bool in_contact() const { return in_contact_; }
+  // Contact "tool": whether the rigid tool touched a node at the end of the last frame; else
+  // whether the spring holds a surface point.
+  bool in_contact() const { return options_.contact == ContactMode::tool ? tool_touching_ : in_contact_; }
   const SurfacePoint& contact() const { return contact_; }
   const std::vector<FrameEvent>& events() const { return events_; }
   hybrid::DhdScene& model() { return *model_; }
@@ -89,7 +91,8 @@ class HapticScene {
   int substeps_ = 1;
   std::unique_ptr<hybrid::DhdScene> model_;
   ContactSurface surface_;
-  bool in_contact_ = false;
+  bool in_contact_ = false;     // the spring's contact (contact_ is valid while it holds)
+  bool tool_touching_ = false;  // contact "tool"
   SurfacePoint contact_;
   long frames_ = 0;
   std::vector<FrameEvent> events_;
