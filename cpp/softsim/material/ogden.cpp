@@ -22,12 +22,8 @@ void validate_moduli(const Ogden& law) {
 }
 
 ElasticParameters small_strain_parameters(const Ogden& law, double density) {
-  const double mu = law.shear_modulus(), K = law.bulk;
-  ElasticParameters p;
-  p.youngs_modulus = 9.0 * K * mu / (3.0 * K + mu);
-  p.poisson_ratio = (3.0 * K - 2.0 * mu) / (2.0 * (3.0 * K + mu));
-  p.density = density;
-  return p;
+  const double mu = law.shear_modulus();
+  return from_lame(mu, law.bulk - 2.0 * mu / 3.0, density);  // λ = K − 2μ/3
 }
 
 double strain_energy_density(const Ogden& law, const Eigen::Matrix3d& F) {

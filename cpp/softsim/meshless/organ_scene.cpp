@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "softsim/io/errors.hpp"
+#include "softsim/mesh/surface.hpp"
 #include "softsim/meshless/tet_quadrature.hpp"
 
 namespace softsim::meshless {
@@ -33,14 +34,6 @@ std::vector<int> fixed_nodes(const OrganScene& scene, const mesh::TetMesh& mesh)
 
 }  // namespace
 
-std::vector<int> surface_nodes(const mesh::TetMesh& mesh) {
-  std::vector<int> s;
-  for (const auto& t : mesh.boundary) s.insert(s.end(), t.begin(), t.end());
-  std::sort(s.begin(), s.end());
-  s.erase(std::unique(s.begin(), s.end()), s.end());
-  return s;
-}
-
 double organ_mean_spacing(const mesh::TetMesh& mesh) {
   double volume = 0;
   for (const auto& t : mesh.tets) volume += std::abs(mesh::signed_volume(mesh, t));
@@ -66,7 +59,7 @@ MeshlessProblem organ_problem(const OrganScene& scene, const mesh::TetMesh& mesh
 
 SceneLayout organ_layout(const OrganScene& scene, const mesh::TetMesh& mesh) {
   SceneLayout l;
-  l.reported_nodes = surface_nodes(mesh);
+  l.reported_nodes = mesh::boundary_nodes(mesh);
   if (l.reported_nodes.empty())
     throw ConfigInputError("/organ/mesh", "a mesh with boundary triangles (" + scene.mesh_path + " has none)");
   l.fixed_nodes = fixed_nodes(scene, mesh);

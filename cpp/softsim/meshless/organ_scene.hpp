@@ -26,8 +26,6 @@ struct OrganScene {
   Eigen::Vector3d body_force = Eigen::Vector3d::Zero();  // N/m³, added to every load case
 };
 
-// The nodes of the boundary triangles, ascending: the surface a dataset reports.
-std::vector<int> surface_nodes(const mesh::TetMesh& mesh);
 // (volume / nodes)^(1/3) of the mesh.
 double organ_mean_spacing(const mesh::TetMesh& mesh);
 
