@@ -104,6 +104,16 @@ void ExplicitSolver::set_initial_state(std::vector<double> u0, std::vector<doubl
   if (!v0.empty() && static_cast<int>(v0.size()) != 3 * n_) throw std::invalid_argument("initial velocity size");
   u0_ = std::move(u0);
   v0_ = std::move(v0);
+  u_before_.clear();
+}
+
+void ExplicitSolver::set_resumed_state(std::vector<double> u_now, std::vector<double> u_before) {
+  if (static_cast<int>(u_now.size()) != 3 * n_ || u_before.size() != u_now.size())
+    throw std::invalid_argument("resumed state size");
+  v0_.resize(u_now.size());
+  for (std::size_t q = 0; q < u_now.size(); ++q) v0_[q] = (u_now[q] - u_before[q]) / opt_.dt;
+  u0_ = std::move(u_now);
+  u_before_ = std::move(u_before);
 }
 
 // The central-difference coefficients of 000 eq. 33 for a step of `dt_after` after one of
@@ -250,6 +260,9 @@ void ExplicitSolver::start() {
       um1[3 * i + k] = u0[3 * i + k] - dt * v0[3 * i + k] + 0.5 * dt * dt * a;
     }
   }
+  // A resumed central-difference state carries its own u(−Δt): no start-up expansion, and the
+  // forces acting on it (applied ones included) continue where the previous solver left them.
+  if (!u_before_.empty()) um1 = u_before_;
   for (const auto& le : loads_)
     for (int k = 0; k < 3; ++k)
       if (le.free[k] && mass_[le.node] > 0)

@@ -157,6 +157,10 @@ class ExplicitSolver {
   // Initial displacement and velocity (3 per node); default zero. Constrained components take
   // their prescribed values regardless. Takes effect at the next reset() (run() resets).
   void set_initial_state(std::vector<double> u0, std::vector<double> v0);
+  // Instead: a central-difference state handed over from another solver (a moved region), u(0) =
+  // `u_now` and u(−Δt) = `u_before` as given, with no start-up step, so the central difference
+  // continues as if uninterrupted. Takes effect at the next reset(); set_initial_state clears it.
+  void set_resumed_state(std::vector<double> u_now, std::vector<double> u_before);
 
   // The whole run of `options.steps` steps from the initial state, with trajectories, probe
   // force history, energy samples, snapshots and the final reactions.
@@ -341,6 +345,7 @@ class ExplicitSolver {
   double applied_work_ = 0;           // booked by the sets before the current one
   std::vector<char> constrained_;     // per dof
   std::vector<double> u0_, v0_;
+  std::vector<double> u_before_;  // u(−Δt) of a resumed state (empty: the start-up step)
   double energy_floor_ = 0;  // energies below it are round-off (growth check)
 
   // The state: u_{n−1}, u_n, u_{n+1} rotate through buf_ (u_n = buf_[(n + 1) % 3]).

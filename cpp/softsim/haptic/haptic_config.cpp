@@ -101,6 +101,21 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
     blade->require(c.options.blade_edge.norm() > 0, "edge", "a blade edge of non-zero length (m)");
     blade->reject_unknown();
   }
+  if (const auto r = cfg.optional("regions")) {
+    if (c.options.contact == ContactMode::tool) r->fail("no regions with contact \"tool\" (regions need \"grasp\" or \"push\")");
+    if (c.options.blade) r->fail("no regions with a blade (a cut changes the regions)");
+    auto& o = c.options.regions;
+    c.options.use_regions = true;
+    o.radius = r->get_positive("radius");
+    o.coupling = r->get_choice("coupling", {"condensed", "exchange"}, "condensed") == "exchange"
+                     ? regions::Coupling::exchange : regions::Coupling::condensed;
+    o.secondary_every = r->get_int32("secondary_every", o.secondary_every);
+    r->require(o.secondary_every >= 1 && o.secondary_every <= 1000000, "secondary_every", "a frame count in [1, 10^6]");
+    o.interpolate = r->get_bool("interpolate", o.interpolate);
+    o.skip_below = r->get_double("skip_below", o.skip_below);
+    r->require(o.skip_below >= 0 && std::isfinite(o.skip_below), "skip_below", "a displacement >= 0 m (0: never skip)");
+    r->reject_unknown();
+  }
   read_input(cfg.at("input"), mesh, c);
   c.frames = cfg.get_int("frames", c.frames);
   cfg.require(c.frames >= 1 && c.frames <= 100000000, "frames", "a frame count in [1, 10^8]");

@@ -42,6 +42,7 @@ HapticRecord run_haptic(HapticScene& scene, const ProbePath& path, long frames) 
   HapticRecord r;
   r.reserve(frames);
   const double h = scene.options().frame_step;
+  if (frames > 0) scene.prepare(path.at(0));
   for (long k = 0; k < frames; ++k) {
     // The tip position of frame k is read at its start (001 §3, step 1).
     const Eigen::Vector3d p = path.at(k * h);
@@ -61,6 +62,43 @@ nlohmann::json rows(const std::vector<Eigen::Vector3d>& v) {
   return a;
 }
 
+// The linked regions' layout and work (null for the whole model): the current primary region,
+// how often it was built, and the secondary updates done and skipped over the run.
+nlohmann::json regions_payload(const HapticScene& scene) {
+  if (!scene.options().use_regions) return nullptr;
+  const auto& o = scene.options().regions;
+  const auto& b = scene.region_builds();
+  regions::RegionStats st = b.retired;
+  nlohmann::json region = nullptr;
+  if (const auto* r = scene.regions()) {
+    const auto& now = r->stats();
+    st.frames += now.frames;
+    st.secondary_updates += now.secondary_updates;
+    st.secondary_skipped += now.secondary_skipped;
+    st.secondary_seconds += now.secondary_seconds;
+    st.secondary_max_seconds = std::max(st.secondary_max_seconds, now.secondary_max_seconds);
+    region = {{"centre_node", r->region().centre},
+              {"primary_tets", r->region().elements.size()},
+              {"primary_nodes", r->region().nodes.size()},
+              {"interface_nodes", r->region().interface.size()},
+              {"setup_seconds", now.setup_seconds}};
+  }
+  return {{"coupling", o.coupling == regions::Coupling::exchange ? "exchange" : "condensed"},
+          {"radius", o.radius},
+          {"secondary_every", o.secondary_every},
+          {"interpolate", o.interpolate},
+          {"skip_below", o.skip_below},
+          {"primary", region},
+          {"builds", b.builds},
+          {"build_seconds_total", b.seconds},
+          {"build_seconds_max", b.max_seconds},
+          {"frames", st.frames},
+          {"secondary_updates", st.secondary_updates},
+          {"secondary_skipped", st.secondary_skipped},
+          {"secondary_seconds_total", st.secondary_seconds},
+          {"secondary_seconds_max", st.secondary_max_seconds}};
+}
+
 }  // namespace
 
 nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& scene, const HapticRecord& record,
@@ -76,9 +114,13 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
                     {"pieces", ev.pieces},
                     {"loose_pieces", ev.loose_pieces},
                     {"seconds", ev.search_seconds + ev.report.seconds + ev.pieces_seconds}});
+  double mean_seconds = 0;
+  for (double x : record.compute_seconds) mean_seconds += x;
+  if (!record.compute_seconds.empty()) mean_seconds /= double(record.compute_seconds.size());
   return {
       {"mode", mode},
-      {"solver", "whole_model"},
+      {"solver", scene.options().use_regions ? "regions" : "whole_model"},
+      {"regions", regions_payload(scene)},
       {"model", {{"material", config.model.model}, {"nodes", scene.model().num_nodes()},
                  {"tets", scene.model().mesh().num_tets()}}},
       {"frame_step", scene.options().frame_step},
@@ -98,7 +140,7 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
       {"blade", {{"sweeps", scene.blade_stats().sweeps},
                  {"seconds_mean", scene.blade_stats().sweeps ? scene.blade_stats().seconds / scene.blade_stats().sweeps : 0.0},
                  {"seconds_max", scene.blade_stats().max_seconds}}},
-      {"timing", {{"frame_seconds_p50", ft.p50}, {"frame_seconds_p99", ft.p99}, {"frame_seconds_max", ft.max},
+      {"timing", {{"frame_seconds_mean", mean_seconds}, {"frame_seconds_p50", ft.p50}, {"frame_seconds_p99", ft.p99}, {"frame_seconds_max", ft.max},
                   {"deadline_misses", ft.deadline_misses}, {"threads", config.model.threads}}},
   };
 }

@@ -6,7 +6,9 @@
 //      deformed surface (contact_surface.hpp),
 //   2. f = k (p − x_c) acts on the contact triangle's nodes (w_a f), held over the frame,
 //   3. the model advances one frame: as many explicit substeps as the critical step requires
-//      (000 eqs. 34–35), all nodes every substep (the whole model),
+//      (000 eqs. 34–35), all nodes every substep (the whole model), or the linked asynchronous
+//      regions of 001 §5 (the primary region around the contact every substep, the secondary
+//      region linear and coupled: regions/region_solver.hpp),
 //   4. the device receives the force on the tool, −k (p − x_c⁺), at the updated state.
 // The model is a dhd_sim scene (hybrid::DhdScene, the same engine and config). A live scene never
 // stops: a numerical failure is reported as an event, the model goes back to rest, and the
@@ -19,6 +21,7 @@
 
 #include "softsim/haptic/contact_surface.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
+#include "softsim/regions/region_solver.hpp"
 
 namespace softsim::haptic {
 
@@ -40,6 +43,10 @@ struct HapticOptions {
   // each frame, the elements its sweep from the previous tip to the current one crosses.
   bool blade = false;
   Eigen::Vector3d blade_edge = Eigen::Vector3d::Zero();  // m
+  // Linked asynchronous regions (001 §5) instead of the whole model: the primary region around
+  // the contact every frame, the secondary region linear and coupled (regions/region_solver.hpp).
+  bool use_regions = false;
+  regions::RegionOptions regions;
 };
 
 struct FrameEvent {
@@ -53,6 +60,10 @@ class HapticScene {
   // number of substeps fills a frame. InputError for a static model config or bad options.
   HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdConfig model, const HapticOptions& options);
 
+  // Regions: builds the primary region around the surface point nearest to `probe` before the
+  // frames begin (an input whose start is known), so that its set-up is not part of a frame.
+  // Otherwise the first contact builds it. Nothing for the whole model.
+  void prepare(const Eigen::Vector3d& probe);
   // One haptic frame with the tip at `probe` (m, world): returns the force on the tool (N).
   Eigen::Vector3d frame(const Eigen::Vector3d& probe);
   // Back to rest, no contact, frame 0.
@@ -70,6 +81,18 @@ class HapticScene {
   hybrid::DhdScene& model() { return *model_; }
   const hybrid::DhdScene& model() const { return *model_; }
   const ContactSurface& surface() const { return surface_; }
+  // The linked regions in use (null: the whole model, or no region built yet), how often the
+  // primary region was built (the first, then each move to follow the contact) and the time
+  // that took.
+  const regions::RegionSolver* regions() const { return regions_.get(); }
+  struct RegionBuilds {
+    long builds = 0;
+    double seconds = 0, max_seconds = 0;
+    regions::RegionStats retired;  // statistics of the regions replaced by a move, summed
+  };
+  const RegionBuilds& region_builds() const { return region_builds_; }
+  // The model's displacement now (3 per node): the whole model's, or the regions' published one.
+  const double* displacement() const;
   // The blade's sweeps so far (one per frame the tool moved) and their wall time (s).
   struct BladeStats {
     long sweeps = 0;
@@ -85,6 +108,12 @@ class HapticScene {
   void follow_cuts();
   // The model at rest and no contact; frames and events kept (recovery from a failure).
   void back_to_rest();
+  // Regions: a primary region whose interior holds the contact triangle, built around its
+  // nearest node the first time and moved (rebuilt from the published state) when the contact
+  // slides out of it.
+  void follow_contact_with_regions();
+  void build_regions(const SurfacePoint& around);
+  Eigen::Vector3d regions_frame(const Eigen::Vector3d& probe);
 
   std::shared_ptr<const mesh::TetMesh> mesh_;
   HapticOptions options_;
@@ -101,6 +130,12 @@ class HapticScene {
   std::size_t cuts_seen_ = 0;
   BladeStats blade_stats_;  // the model's cut events the surface has followed
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
+  // Regions: the small-strain model of the whole mesh (built once), lumped masses, the solver.
+  std::unique_ptr<regions::LinearModel> linear_;
+  std::vector<double> masses_;
+  std::unique_ptr<regions::RegionSolver> regions_;
+  RegionBuilds region_builds_;
+  std::vector<double> rest_;  // zero displacement (before the first region exists)
 };
 
 // The explicit step and substep count of a frame: the largest step ≤ `dt_limit` that divides

@@ -1,0 +1,215 @@
+#include "softsim/regions/region_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "softsim/hybrid/dhd_scene.hpp"
+#include "softsim/io/errors.hpp"
+
+namespace softsim::regions {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+void check_supported(const hybrid::DhdConfig& model) {
+  const auto& s = model.scene;
+  if (!s.loads.empty()) throw InputError("regions: the model's nodal loads are not supported (the haptic loop is the input)");
+  if (s.has_probe) throw InputError("regions: the model's probe spring is not supported (the haptic loop is the probe)");
+  if (!s.tools.empty()) throw InputError("regions: rigid tools are not supported with regions");
+  if (!model.cuts.empty()) throw InputError("regions: cuts are not supported with regions");
+  for (const auto& c : s.constraints)
+    if (!c.displacement.isZero())
+      throw InputError("regions: constraint \"" + c.name + "\" prescribes a non-zero displacement; regions hold constraints at zero");
+}
+
+}  // namespace
+
+RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& model,
+                           const std::vector<fem::ElementKind>& kinds, const std::vector<double>& masses,
+                           const LinearModel& linear, double dt, int substeps, PrimaryRegion region,
+                           const RegionOptions& options)
+    : mesh_(&mesh), region_(std::move(region)), options_(options), substeps_(substeps) {
+  const auto t0 = Clock::now();
+  check_supported(model);
+  if (options.secondary_every < 1) throw InputError("regions: secondary_every must be at least 1");
+  if (!(options.skip_below >= 0)) throw InputError("regions: skip_below must not be negative");
+  const bool exchange = options.coupling == Coupling::exchange;
+  // The primary region's scene: the interface held at the published values (exchange), then the
+  // model's constraints on the primary nodes, which win where both act (a fixed interface node
+  // stays fixed).
+  scene_.gravity = model.scene.gravity;
+  scene_.gravity_ramp = model.scene.gravity_ramp;
+  if (exchange) {
+    for (std::size_t a = 0; a < region_.interface.size(); ++a) {
+      dynamics::DisplacementConstraint c;
+      c.name = "interface[" + std::to_string(a) + "]";
+      c.nodes = {region_.interface_local[a]};
+      scene_.constraints.push_back(std::move(c));
+    }
+  }
+  first_interface_constraint_ = 0;
+  for (const auto& c : model.scene.constraints) {
+    dynamics::DisplacementConstraint local = c;
+    local.nodes.clear();
+    for (int i : c.nodes)
+      if (region_.local[i] >= 0) local.nodes.push_back(region_.local[i]);
+    if (!local.nodes.empty()) scene_.constraints.push_back(std::move(local));
+  }
+  std::vector<fem::ElementKind> sub_kinds;
+  sub_kinds.reserve(region_.elements.size());
+  for (int e : region_.elements) sub_kinds.push_back(kinds[e]);
+  std::vector<double> sub_masses;
+  sub_masses.reserve(region_.nodes.size());
+  for (int i : region_.nodes) sub_masses.push_back(masses[i]);
+  elements_ = std::make_unique<fem::ElementSet>(region_.submesh, sub_kinds, model.material);
+  solver_ = std::make_unique<dynamics::ExplicitSolver>(*elements_, std::move(sub_masses), scene_,
+                                                       hybrid::explicit_options(model, dt));
+  // A primary region that covers the mesh leaves no secondary region: the whole model.
+  if (region_.num_secondary_elements(mesh) > 0) {
+    if (exchange)
+      exchange_ = std::make_unique<ExchangeSecondary>(linear, region_);
+    else
+      condensed_ = std::make_unique<CondensedSecondary>(linear, region_);
+  }
+  const std::size_t ni = 3 * region_.interface.size();
+  interface_before_.assign(ni, 0.0);
+  interface_last_.assign(ni, 0.0);
+  interface_u_.assign(ni, 0.0);
+  interface_f_.assign(ni, 0.0);
+  applied_.reserve(16 + region_.interface.size());
+  u_.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
+  stats_.setup_seconds = seconds_since(t0);
+  start_from({}, {});
+}
+
+void RegionSolver::start_from(const std::vector<double>& u, const std::vector<double>& u_before) {
+  const std::size_t n3 = 3 * static_cast<std::size_t>(mesh_->num_nodes());
+  if (u.empty())
+    std::fill(u_.begin(), u_.end(), 0.0);
+  else
+    std::copy(u.begin(), u.begin() + n3, u_.begin());
+  if (u.empty() || u_before.empty()) {
+    solver_->set_initial_state({}, {});
+  } else {
+    std::vector<double> now(3 * region_.nodes.size()), before(3 * region_.nodes.size());
+    for (std::size_t k = 0; k < region_.nodes.size(); ++k)
+      for (int c = 0; c < 3; ++c) {
+        now[3 * k + c] = u_[3 * region_.nodes[k] + c];
+        before[3 * k + c] = u_before[3 * region_.nodes[k] + c];
+      }
+    solver_->set_resumed_state(std::move(now), std::move(before));
+  }
+  solver_->reset();
+  for (std::size_t a = 0; a < region_.interface.size(); ++a)
+    for (int c = 0; c < 3; ++c) interface_before_[3 * a + c] = interface_last_[3 * a + c] = u_[3 * region_.interface[a] + c];
+  if (exchange_) {
+    // The interface starts where it is (a moved region takes over its predecessor's values).
+    for (std::size_t a = 0; a < region_.interface.size(); ++a)
+      solver_->set_prescribed_displacement(first_interface_constraint_ + static_cast<int>(a),
+                                           Eigen::Vector3d(interface_last_.data() + 3 * a));
+  }
+  last_update_ = stats_.frames;
+  input_at_update_.assign(u_.begin(), u_.end());
+}
+
+double RegionSolver::gravity_factor() const { return scene_.gravity_ramp.at(solver_->time()); }
+
+void RegionSolver::frame(const std::vector<dynamics::AppliedForce>& forces) {
+  applied_.clear();
+  for (const auto& f : forces) {
+    const int local = region_.local[f.node];
+    if (local < 0 || !region_.interior[f.node])
+      throw InputError("regions: a force on node " + std::to_string(f.node) + ", outside the primary region's interior");
+    applied_.push_back({local, f.force});
+  }
+  const std::size_t contact_forces = applied_.size();
+  if (!condensed_) {
+    // 001 Fig. 4: between updates the interface moves linearly from the previous update's values
+    // to the last one's over `every` frames (one update late); held: the last values.
+    const long since = stats_.frames - last_update_ + 1;
+    const double s = options_.interpolate ? std::min(1.0, double(since) / options_.secondary_every) : 1.0;
+    for (std::size_t a = 0; a < region_.interface.size(); ++a) {
+      Eigen::Vector3d value;
+      for (int c = 0; c < 3; ++c)
+        value[c] = interface_before_[3 * a + c] + s * (interface_last_[3 * a + c] - interface_before_[3 * a + c]);
+      solver_->set_prescribed_displacement(first_interface_constraint_ + static_cast<int>(a), value);
+    }
+    solver_->set_applied_forces(applied_);
+    solver_->advance(substeps_);
+  } else {
+    // The condensed secondary acts at every substep, from the interface displacement of that
+    // step (000 eq. 33 evaluates every internal force at u_n).
+    for (int s = 0; s < substeps_; ++s) {
+      const double* u = solver_->displacement();
+      for (std::size_t a = 0; a < region_.interface.size(); ++a)
+        for (int c = 0; c < 3; ++c) interface_u_[3 * a + c] = u[3 * region_.interface_local[a] + c];
+      condensed_->interface_force(interface_u_.data(), gravity_factor(), interface_f_.data());
+      applied_.resize(contact_forces);
+      for (std::size_t a = 0; a < region_.interface.size(); ++a)
+        applied_.push_back({region_.interface_local[a], Eigen::Vector3d(interface_f_.data() + 3 * a)});
+      solver_->set_applied_forces(applied_);
+      solver_->advance(1);
+    }
+  }
+  publish_primary();
+  ++stats_.frames;
+  if ((exchange_ || condensed_) && (stats_.frames - last_update_) >= options_.secondary_every) secondary_update();
+}
+
+void RegionSolver::publish_primary() {
+  const double* u = solver_->displacement();
+  for (std::size_t k = 0; k < region_.nodes.size(); ++k)
+    for (int c = 0; c < 3; ++c) u_[3 * region_.nodes[k] + c] = u[3 * k + c];
+}
+
+void RegionSolver::primary_previous(double* u) const {
+  std::vector<double> v(3 * region_.nodes.size());
+  solver_->velocity(v.data());
+  const double* now = solver_->displacement();
+  const double dt = solver_->dt();
+  for (std::size_t k = 0; k < v.size(); ++k) u[3 * region_.nodes[k / 3] + k % 3] = now[k] - dt * v[k];
+}
+
+void RegionSolver::refresh_secondary() {
+  if (exchange_ || condensed_) secondary_update(true);
+}
+
+void RegionSolver::secondary_update(bool forced) {
+  // What the secondary update would see: the primary interior (exchange) or the interface
+  // (condensed). Below the threshold since the last update, nothing far away needs to move.
+  double moved = 0;
+  const bool exchange = exchange_ != nullptr;
+  for (int i : region_.nodes) {
+    if (exchange != (region_.interior[i] != 0)) continue;
+    for (int c = 0; c < 3; ++c) moved = std::max(moved, std::abs(u_[3 * i + c] - input_at_update_[3 * i + c]));
+  }
+  if (!forced && options_.skip_below > 0 && moved < options_.skip_below) {
+    ++stats_.secondary_skipped;
+    last_update_ = stats_.frames;
+    interface_before_ = interface_last_;  // hold: the interface stays where it is
+    return;
+  }
+  const auto t0 = Clock::now();
+  for (int i : region_.nodes)
+    for (int c = 0; c < 3; ++c) input_at_update_[3 * i + c] = u_[3 * i + c];
+  if (exchange) {
+    exchange_->solve(u_.data(), gravity_factor());
+    interface_before_ = interface_last_;
+    for (std::size_t a = 0; a < region_.interface.size(); ++a)
+      for (int c = 0; c < 3; ++c) interface_last_[3 * a + c] = u_[3 * region_.interface[a] + c];
+  } else {
+    condensed_->recover(u_.data(), gravity_factor());
+  }
+  last_update_ = stats_.frames;
+  ++stats_.secondary_updates;
+  const double s = seconds_since(t0);
+  stats_.secondary_seconds += s;
+  stats_.secondary_max_seconds = std::max(stats_.secondary_max_seconds, s);
+}
+
+}  // namespace softsim::regions

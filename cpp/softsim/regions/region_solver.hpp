@@ -1,0 +1,106 @@
+#pragma once
+// Linked asynchronous FEM regions (001 §5) on a tetrahedral dhd_sim model, one haptic frame at
+// a time. The primary region (primary_region.hpp) is the dhd_sim engine itself on the primary
+// elements (any element kinds, the same explicit central difference, 000 eq. 33, the same
+// substeps per frame as the whole model); the secondary region is linear and quasi-static with
+// its factorisation computed once (secondary_region.hpp), coupled by
+//   exchange:   001 eq. 7: solved every `secondary_every` frames from the primary's interior
+//               displacement; the interface nodes are prescribed in the primary region to the
+//               values it publishes, held or interpolated between updates (001 Fig. 4);
+//   condensed:  its stiffness condensed onto the interface, a force on the primary region at
+//               every substep; its own nodes recovered every `secondary_every` frames (pictures).
+// Skipping (issue: "skip what the scene does not need"): a secondary update whose input moved
+// by less than `skip_below` since the last update is not done; the count is kept.
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "softsim/dynamics/explicit_solver.hpp"
+#include "softsim/fem/element_set.hpp"
+#include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/regions/primary_region.hpp"
+#include "softsim/regions/secondary_region.hpp"
+
+namespace softsim::regions {
+
+enum class Coupling { exchange, condensed };
+
+struct RegionOptions {
+  double radius = 0.02;         // m: primary elements have a node this close to the contact node
+  Coupling coupling = Coupling::condensed;
+  int secondary_every = 10;     // frames between secondary updates (a rate of 1 kHz / every)
+  bool interpolate = true;      // exchange: interface values interpolated between updates (001 Fig. 4)
+  double skip_below = 0;        // m: skip a secondary update whose input moved less (0: never skip)
+};
+
+struct RegionStats {
+  long frames = 0;
+  long secondary_updates = 0;   // secondary solves (exchange) or recoveries (condensed) done
+  long secondary_skipped = 0;   // of those due, skipped because nothing near moved
+  double setup_seconds = 0;     // building the primary engine and the secondary factorisation
+  double secondary_seconds = 0; // secondary solves / recoveries, summed
+  double secondary_max_seconds = 0;
+};
+
+class RegionSolver {
+ public:
+  // `model`: the scene's dhd_sim config (explicit, step `dt`), `kinds` its partition (one per
+  // tetrahedron of `mesh`), `masses` the whole mesh's lumped masses, `linear` the small-strain
+  // model of the same mesh. InputError for a scene the regions do not support (loads, a probe
+  // spring or tools in the config: the haptic loop is the only input).
+  RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& model, const std::vector<fem::ElementKind>& kinds,
+               const std::vector<double>& masses, const LinearModel& linear, double dt, int substeps,
+               PrimaryRegion region, const RegionOptions& options);
+
+  // Starts from displacement `u` (3 per node, global; empty: rest) with the previous step's
+  // displacement `u_before` (empty: at rest, u(−Δt) = u): the central difference resumes from
+  // there (ExplicitSolver::set_resumed_state). A region moved to follow the contact starts from
+  // the state its predecessor published.
+  void start_from(const std::vector<double>& u, const std::vector<double>& u_before);
+  // One haptic frame with `forces` (global nodes, interior to the primary region) acting.
+  void frame(const std::vector<dynamics::AppliedForce>& forces);
+  // Whether a node is solved every frame with forces allowed on it.
+  bool interior(int node) const { return region_.interior[node] != 0; }
+  // The whole mesh's displacement as the regions publish it (3 per node): the primary region's
+  // now, the secondary region's from its last update.
+  const double* displacement() const { return u_.data(); }
+  // Brings the secondary region up to the primary's current state now (a region about to be
+  // replaced publishes a current field for its successor).
+  void refresh_secondary();
+  // The primary region's displacement one step ago into `u` (global layout; other nodes
+  // untouched).
+  void primary_previous(double* u) const;
+  const PrimaryRegion& region() const { return region_; }
+  const RegionStats& stats() const { return stats_; }
+  const dynamics::ExplicitSolver& primary() const { return *solver_; }
+  double time() const { return solver_->time(); }
+
+ private:
+  void publish_primary();
+  void secondary_update(bool forced = false);
+  double gravity_factor() const;
+
+  const mesh::TetMesh* mesh_;
+  PrimaryRegion region_;
+  RegionOptions options_;
+  int substeps_ = 1;
+  dynamics::Scene scene_;           // the primary region's scene (sub-mesh numbering)
+  std::unique_ptr<fem::ElementSet> elements_;
+  std::unique_ptr<dynamics::ExplicitSolver> solver_;
+  std::unique_ptr<ExchangeSecondary> exchange_;
+  std::unique_ptr<CondensedSecondary> condensed_;
+  std::vector<double> u_;           // global published displacement
+  // Exchange: the interface values of the last two secondary updates (3 per interface node) and
+  // the frame of the last one; the interface constraints' indices in scene_.
+  std::vector<double> interface_before_, interface_last_;
+  long last_update_ = 0;
+  int first_interface_constraint_ = 0;
+  // Condensed: the interface displacement and force buffers (3 per interface node).
+  std::vector<double> interface_u_, interface_f_;
+  std::vector<dynamics::AppliedForce> applied_;  // contact forces (local nodes) + interface forces
+  std::vector<double> input_at_update_;          // what the last secondary update saw (skipping)
+  RegionStats stats_;
+};
+
+}  // namespace softsim::regions

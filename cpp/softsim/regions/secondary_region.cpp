@@ -1,0 +1,108 @@
+#include "softsim/regions/secondary_region.hpp"
+
+#include <utility>
+
+#include "softsim/fem/assembly.hpp"
+#include "softsim/regions/dof_blocks.hpp"
+
+namespace softsim::regions {
+
+namespace {
+
+Eigen::SparseMatrix<double> small_strain_stiffness(const mesh::TetMesh& mesh, const fem::Material& material) {
+  const fem::Assembler a(mesh, std::vector<fem::ElementKind>(mesh.num_tets(), fem::ElementKind::linear), material);
+  Eigen::SparseMatrix<double> K = a.pattern();
+  const std::vector<double> zero(a.num_dofs(), 0.0);
+  a.tangent(zero.data(), K);
+  return K;
+}
+
+Eigen::VectorXd gather(const Eigen::VectorXd& v, const std::vector<int>& dofs) {
+  Eigen::VectorXd out(static_cast<int>(dofs.size()));
+  for (std::size_t k = 0; k < dofs.size(); ++k) out[k] = v[dofs[k]];
+  return out;
+}
+
+}  // namespace
+
+LinearModel::LinearModel(const mesh::TetMesh& m, const fem::Material& mat, std::vector<char> c, Eigen::VectorXd g)
+    : mesh(&m), material(mat), constrained(std::move(c)), gravity_force(std::move(g)), K(small_strain_stiffness(m, mat)) {}
+
+ExchangeSecondary::ExchangeSecondary(const LinearModel& model, const PrimaryRegion& region) : model_(&model) {
+  const int n = model.mesh->num_nodes();
+  secondary_ = free_dofs(n, model.constrained, [&](int i) { return !region.interior[i]; });
+  primary_ = free_dofs(n, model.constrained, [&](int i) { return region.interior[i] != 0; });
+  K_sp_ = dof_block(model.K, secondary_, primary_);
+  solver_.factorize(dof_block(model.K, secondary_, secondary_), multirate::LinearSolverKind::kSparse,
+                    "regions: secondary region (001 eq. 7)");
+  u_p_.setZero(static_cast<int>(primary_.size()));
+  rhs_.setZero(static_cast<int>(secondary_.size()));
+}
+
+void ExchangeSecondary::solve(double* u, double gravity_factor) {
+  for (std::size_t k = 0; k < primary_.size(); ++k) u_p_[k] = u[primary_[k]];
+  rhs_.noalias() = -(K_sp_ * u_p_);
+  for (std::size_t k = 0; k < secondary_.size(); ++k) rhs_[k] += gravity_factor * model_->gravity_force[secondary_[k]];
+  solver_.solve_in_place(rhs_);
+  for (std::size_t k = 0; k < secondary_.size(); ++k) u[secondary_[k]] = rhs_[k];
+}
+
+CondensedSecondary::CondensedSecondary(const LinearModel& model, const PrimaryRegion& region) : model_(&model) {
+  const mesh::TetMesh& mesh = *model.mesh;
+  const int n = mesh.num_nodes();
+  // K^s: the secondary elements alone, on the whole node numbering.
+  mesh::TetMesh far;
+  far.nodes = mesh.nodes;
+  std::vector<char> primary(mesh.num_tets(), 0);
+  for (int e : region.elements) primary[e] = 1;
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    if (!primary[e]) far.tets.push_back(mesh.tets[e]);
+  std::vector<char> in_far(n, 0);
+  for (const auto& t : far.tets)
+    for (int i : t) in_far[i] = 1;
+  const Eigen::SparseMatrix<double> Ks = small_strain_stiffness(far, model.material);
+  std::vector<int> slot_of_node(n, -1);
+  for (std::size_t a = 0; a < region.interface.size(); ++a) slot_of_node[region.interface[a]] = static_cast<int>(a);
+  interface_ = free_dofs(n, model.constrained, [&](int i) { return slot_of_node[i] >= 0; });
+  secondary_ = free_dofs(n, model.constrained, [&](int i) { return in_far[i] && region.local[i] < 0; });
+  for (int d : interface_) interface_slot_.push_back(3 * slot_of_node[d / 3] + d % 3);
+  solver_.factorize(dof_block(Ks, secondary_, secondary_), multirate::LinearSolverKind::kSparse,
+                    "regions: secondary region (condensation)");
+  K_si_ = dof_block(Ks, secondary_, interface_);
+  const Eigen::SparseMatrix<double> K_ii = dof_block(Ks, interface_, interface_);
+  // S_II = K_II − K_IS K_SS⁻¹ K_SI, one column per interface dof (K_IS = K_SIᵀ: symmetric).
+  const int ni = static_cast<int>(interface_.size());
+  S_ = Eigen::MatrixXd(K_ii);
+  Eigen::VectorXd x(static_cast<int>(secondary_.size()));
+  for (int j = 0; j < ni; ++j) {
+    x = K_si_.col(j);
+    solver_.solve_in_place(x);
+    S_.col(j).noalias() -= K_si_.transpose() * x;
+  }
+  S_ = 0.5 * (S_ + S_.transpose()).eval();  // symmetric to round-off, exactly
+  g_s_ = gather(model.gravity_force, secondary_);
+  x = g_s_;
+  solver_.solve_in_place(x);
+  h_ = K_si_.transpose() * x;
+  u_i_.setZero(ni);
+  f_i_.setZero(ni);
+  rhs_.setZero(static_cast<int>(secondary_.size()));
+}
+
+void CondensedSecondary::interface_force(const double* u_interface, double gravity_factor, double* force) {
+  const int ni = static_cast<int>(interface_.size());
+  for (int k = 0; k < ni; ++k) u_i_[k] = u_interface[interface_slot_[k]];
+  f_i_.noalias() = S_ * u_i_;
+  for (int k = 0; k < ni; ++k) force[interface_slot_[k]] = -f_i_[k] - gravity_factor * h_[k];
+}
+
+void CondensedSecondary::recover(double* u, double gravity_factor) {
+  const int ni = static_cast<int>(interface_.size());
+  for (int k = 0; k < ni; ++k) u_i_[k] = u[interface_[k]];
+  rhs_.noalias() = gravity_factor * g_s_;
+  rhs_.noalias() -= K_si_ * u_i_;
+  solver_.solve_in_place(rhs_);
+  for (std::size_t k = 0; k < secondary_.size(); ++k) u[secondary_[k]] = rhs_[k];
+}
+
+}  // namespace softsim::regions

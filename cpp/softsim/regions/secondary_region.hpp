@@ -1,0 +1,86 @@
+#pragma once
+// The secondary region of the linked asynchronous regions (001 §5) as a linear, quasi-static
+// model whose factorisation is computed once: the cheap far field of 000 (small-strain
+// elements) solved with precomputation, where precomputation pays. Two couplings to the
+// primary region:
+//
+//   Exchange (001 eq. 7): every k-th frame the secondary solves its own rows of the linear
+//     system with the primary's interior displacements on the right-hand side,
+//       K_SS u_S = f_S − K_SP u_P,
+//     S = every free dof outside the primary interior (interface included), K the small-strain
+//     stiffness of the whole mesh. The primary region sees the interface values it publishes.
+//
+//   Condensation: the secondary elements' stiffness K^s is condensed onto the interface once
+//     (the Schur complement with the secondary's own nodes eliminated, as in local-model and
+//     static-condensation methods),
+//       S_II = K^s_II − K^s_IS (K^s_SS)^-1 K^s_SI,   h = K^s_IS (K^s_SS)^-1 f_S,
+//     and the primary region carries the interface force −S_II u_I − h at every explicit
+//     substep: the exact quasi-static response of a linear secondary region, no lag. The
+//     secondary's own displacement is recovered only when a picture needs it.
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "softsim/fem/constitutive.hpp"
+#include "softsim/mesh/tet_mesh.hpp"
+#include "softsim/multirate/spd_solver.hpp"
+#include "softsim/regions/primary_region.hpp"
+
+namespace softsim::regions {
+
+// What both couplings share: the mesh, the small-strain stiffness of every element and the
+// constrained dofs (held at zero), built once per scene.
+struct LinearModel {
+  LinearModel(const mesh::TetMesh& mesh, const fem::Material& material, std::vector<char> constrained,
+              Eigen::VectorXd gravity_force);
+  const mesh::TetMesh* mesh;
+  fem::Material material;
+  std::vector<char> constrained;    // per dof
+  Eigen::VectorXd gravity_force;    // M g per dof at full gravity (zero without gravity)
+  Eigen::SparseMatrix<double> K;    // small-strain stiffness of the whole mesh
+};
+
+class ExchangeSecondary {
+ public:
+  // NumericalError if the secondary block is singular (a secondary piece held by nothing).
+  ExchangeSecondary(const LinearModel& model, const PrimaryRegion& region);
+  // Reads the primary interior's dofs of `u` (3 per node, global), writes the secondary's
+  // (interface included); `gravity_factor` scales the gravity load (its ramp).
+  void solve(double* u, double gravity_factor);
+  int dofs() const { return static_cast<int>(secondary_.size()); }
+
+ private:
+  const LinearModel* model_;
+  std::vector<int> secondary_, primary_;  // global dofs
+  Eigen::SparseMatrix<double> K_sp_;
+  multirate::SpdSolver solver_;
+  Eigen::VectorXd u_p_, rhs_;
+};
+
+class CondensedSecondary {
+ public:
+  CondensedSecondary(const LinearModel& model, const PrimaryRegion& region);
+  // The secondary's force on the interface nodes at interface displacement `u_interface`
+  // (3 per interface node, in region.interface order): −S_II u_I − gravity_factor h, written to
+  // `force` (same layout; constrained components zero). No allocation.
+  void interface_force(const double* u_interface, double gravity_factor, double* force);
+  // The secondary nodes' displacement for the interface displacement in `u` (global, 3 per
+  // node): u_S = (K^s_SS)^-1 (f_S − K^s_SI u_I), written into `u`.
+  void recover(double* u, double gravity_factor);
+  int interface_dofs() const { return static_cast<int>(interface_.size()); }
+  int secondary_dofs() const { return static_cast<int>(secondary_.size()); }
+
+ private:
+  const LinearModel* model_;
+  std::vector<int> interface_, secondary_;  // global free dofs
+  std::vector<int> interface_slot_;         // per interface dof: its index in the 3-per-node interface layout
+  Eigen::MatrixXd S_;                       // condensed interface stiffness
+  Eigen::VectorXd h_;                       // condensed gravity load at full gravity
+  Eigen::SparseMatrix<double> K_si_;
+  Eigen::VectorXd g_s_;                     // gravity on the secondary dofs at full gravity
+  multirate::SpdSolver solver_;
+  Eigen::VectorXd u_i_, f_i_, rhs_;
+};
+
+}  // namespace softsim::regions

@@ -1,0 +1,210 @@
+// Linked asynchronous regions in 3-D (001 §5 on the dhd_sim engine): a primary region covering
+// the mesh is the whole model, bit for bit; with a linear model, the condensed coupling settles
+// exactly on the whole model's static answer and the exchange of 001 eq. 7 converges to it;
+// a sliding contact moves the region without a force jump; skipping a secondary update that
+// nothing moved is counted; bad region input is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "softsim/haptic/haptic_config.hpp"
+#include "softsim/haptic/haptic_run.hpp"
+#include "softsim/haptic/haptic_scene.hpp"
+#include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/io/errors.hpp"
+#include "softsim/regions/primary_region.hpp"
+
+#include "support/scenes.hpp"
+
+using namespace softsim;
+
+namespace {
+
+// A 8 x 8 x 4-cell block, 10 x 10 x 5 cm, bottom fixed, E = 5 kPa (000 §3.1), damped.
+struct Block {
+  std::shared_ptr<const mesh::TetMesh> mesh =
+      std::make_shared<const mesh::TetMesh>(test_scenes::cuboid(8, 8, 4, 0.1, 0.1, 0.05));
+  hybrid::DhdConfig config(double damping, const std::string& model = "neo_hookean_paper") const {
+    const nlohmann::json j = {{"mesh", "unused"},
+                              {"material", {{"model", model}, {"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                              {"damping", {{"alpha", damping}}},
+                              {"boundary", {{"fixed", {{{"set", "bottom"}}}}}},
+                              {"solver", {{"kind", "explicit"}}}};
+    return hybrid::read_dhd_config(io::JsonReader(j, "block.json"), *mesh);
+  }
+};
+
+haptic::HapticOptions with_regions(double radius, regions::Coupling coupling, int every, bool interpolate = true) {
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = 100;
+  opt.use_regions = true;
+  opt.regions.radius = radius;
+  opt.regions.coupling = coupling;
+  opt.regions.secondary_every = every;
+  opt.regions.interpolate = interpolate;
+  return opt;
+}
+
+haptic::HapticOptions whole_model() {
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = 100;
+  return opt;
+}
+
+haptic::ProbePath press_down(const Eigen::Vector3d& origin, double depth, double ramp_time) {
+  haptic::ProbePath path;
+  path.origin = origin;
+  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
+  path.signal.amplitude = depth;
+  path.signal.ramp_time = ramp_time;
+  return path;
+}
+
+const Eigen::Vector3d kTop(0.05, 0.05, 0.05);
+
+}  // namespace
+
+TEST(PrimaryRegion, SplitsNodesIntoInteriorInterfaceAndSecondary) {
+  Block b;
+  const auto& m = *b.mesh;
+  int centre = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if ((m.nodes[i] - kTop).norm() < 1e-12) centre = i;
+  const regions::PrimaryRegion r = regions::select_primary_region(m, centre, 0.025);
+  ASSERT_FALSE(r.interface.empty());
+  std::vector<int> primary_touch(m.num_nodes(), 0), secondary_touch(m.num_nodes(), 0);
+  std::vector<char> primary(m.num_tets(), 0);
+  for (int e : r.elements) primary[e] = 1;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    bool near = false;
+    for (int n : m.tets[e]) near = near || (m.nodes[n] - kTop).norm() <= 0.025;
+    EXPECT_EQ(near, primary[e] != 0) << "element " << e;
+    for (int n : m.tets[e]) (primary[e] ? primary_touch : secondary_touch)[n] = 1;
+  }
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    EXPECT_EQ(r.interior[i] != 0, primary_touch[i] && !secondary_touch[i]);
+    EXPECT_EQ(r.local[i] >= 0, primary_touch[i] != 0);
+  }
+  for (int i : r.interface) EXPECT_TRUE(primary_touch[i] && secondary_touch[i]);
+  // The sub-mesh is the primary elements on renumbered nodes, same geometry.
+  ASSERT_EQ(r.submesh.num_tets(), static_cast<int>(r.elements.size()));
+  for (std::size_t k = 0; k < r.elements.size(); ++k)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_EQ(r.nodes[r.submesh.tets[k][c]], m.tets[r.elements[k]][c]);
+  EXPECT_THROW(regions::select_primary_region(m, centre, 0.0), InputError);
+  EXPECT_THROW(regions::select_primary_region(m, -1, 0.02), InputError);
+}
+
+TEST(Regions, APrimaryRegionCoveringTheMeshIsTheWholeModelBitForBit) {
+  Block b;
+  const haptic::ProbePath path = press_down(kTop, 0.008, 0.2);
+  haptic::HapticScene whole(b.mesh, b.config(15), whole_model());
+  haptic::HapticScene all(b.mesh, b.config(15), with_regions(1.0, regions::Coupling::condensed, 10));
+  const auto rw = haptic::run_haptic(whole, path, 400);
+  const auto ra = haptic::run_haptic(all, path, 400);
+  ASSERT_NE(all.regions(), nullptr);
+  EXPECT_TRUE(all.regions()->region().interface.empty());
+  for (std::size_t k = 0; k < rw.force.size(); ++k)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(rw.force[k][c], ra.force[k][c]) << "frame " << k;
+}
+
+// With a linear model the primary region is linear too, and the condensed secondary is its
+// exact quasi-static complement: once the damped press settles, the force equals the whole
+// model's. The exchange of 001 eq. 7 is a block Gauss-Seidel sweep per update, whose fixed point
+// is the same equilibrium.
+TEST(Regions, OnALinearModelBothCouplingsSettleOnTheWholeModelsForce) {
+  Block b;
+  const haptic::ProbePath path = press_down(kTop, 0.006, 0.2);
+  const long frames = 4000;
+  haptic::HapticScene whole(b.mesh, b.config(40, "linear"), whole_model());
+  const Eigen::Vector3d expected = haptic::run_haptic(whole, path, frames).force.back();
+  ASSERT_GT(expected.z(), 0.1);
+  haptic::HapticScene condensed(b.mesh, b.config(40, "linear"), with_regions(0.03, regions::Coupling::condensed, 10));
+  const auto rc = haptic::run_haptic(condensed, path, frames);
+  ASSERT_TRUE(condensed.events().empty());
+  ASSERT_FALSE(condensed.regions()->region().interface.empty());
+  EXPECT_LT((rc.force.back() - expected).norm(), 1e-6 * expected.norm())
+      << rc.force.back().transpose() << " vs " << expected.transpose();
+  haptic::HapticScene exchange(b.mesh, b.config(40, "linear"),
+                               with_regions(0.03, regions::Coupling::exchange, 5, false));
+  const auto re = haptic::run_haptic(exchange, path, frames);
+  ASSERT_TRUE(exchange.events().empty());
+  EXPECT_LT((re.force.back() - expected).norm(), 1e-4 * expected.norm())
+      << re.force.back().transpose() << " vs " << expected.transpose();
+  // While the press moves, the condensed coupling follows the whole model far more closely.
+  haptic::HapticScene moving_whole(b.mesh, b.config(40, "linear"), whole_model());
+  const auto rw = haptic::run_haptic(moving_whole, path, 300);
+  double err_c = 0, err_e = 0;
+  for (int k = 0; k < 300; ++k) {
+    err_c = std::max(err_c, (rc.force[k] - rw.force[k]).norm());
+    err_e = std::max(err_e, (re.force[k] - rw.force[k]).norm());
+  }
+  EXPECT_LT(err_c, err_e);
+}
+
+TEST(Regions, ASlidingContactMovesTheRegionWithoutAForceJump) {
+  Block b;
+  haptic::HapticScene scene(b.mesh, b.config(40), with_regions(0.025, regions::Coupling::condensed, 10));
+  haptic::ProbePath path = press_down({0.031, 0.052, 0.05}, 0.005, 0.2);
+  path.kind = haptic::ProbePath::Kind::slide;
+  path.slide_direction = Eigen::Vector3d::UnitX();
+  path.slide_speed = 0.02;
+  const auto r = haptic::run_haptic(scene, path, 1700);
+  ASSERT_TRUE(scene.events().empty());
+  EXPECT_GE(scene.region_builds().builds, 2);  // built at the start, moved as the contact slid
+  double largest_jump = 0, largest_force = 0;
+  for (std::size_t k = 401; k < r.force.size(); ++k) {
+    largest_jump = std::max(largest_jump, (r.force[k] - r.force[k - 1]).norm());
+    largest_force = std::max(largest_force, r.force[k].norm());
+  }
+  EXPECT_LT(largest_jump, 0.01 * largest_force) << largest_jump << " N of " << largest_force << " N";
+  EXPECT_NEAR(scene.contact().position.x(), path.at(1.699).x(), 0.003);
+}
+
+TEST(Regions, SecondaryUpdatesThatNothingMovedAreSkippedAndCounted) {
+  Block b;
+  const haptic::ProbePath path = press_down(kTop, 0.006, 0.2);
+  auto opt = with_regions(0.03, regions::Coupling::exchange, 5, false);
+  haptic::HapticScene every(b.mesh, b.config(40), opt);
+  haptic::run_haptic(every, path, 2000);
+  EXPECT_EQ(every.regions()->stats().secondary_updates, 400);
+  EXPECT_EQ(every.regions()->stats().secondary_skipped, 0);
+  opt.regions.skip_below = 1e-6;
+  haptic::HapticScene skipping(b.mesh, b.config(40), opt);
+  const auto r = haptic::run_haptic(skipping, path, 2000);
+  const auto& st = skipping.regions()->stats();
+  EXPECT_EQ(st.secondary_updates + st.secondary_skipped, 400);
+  EXPECT_GT(st.secondary_skipped, 100);  // the held press comes to rest
+  EXPECT_GT(st.secondary_updates, 40);   // while it moved, every update was done
+  EXPECT_TRUE(r.force.back().allFinite());
+}
+
+TEST(Regions, BadRegionInputIsRefused) {
+  Block b;
+  auto tool = with_regions(0.02, regions::Coupling::condensed, 10);
+  tool.blade = true;
+  tool.blade_edge = Eigen::Vector3d(0.01, 0, 0);
+  EXPECT_THROW(haptic::HapticScene(b.mesh, b.config(10), tool), InputError);
+  // A radius too small to hold the contact triangle's nodes in the interior.
+  haptic::HapticScene tiny(b.mesh, b.config(10), with_regions(1e-4, regions::Coupling::condensed, 10));
+  EXPECT_THROW(tiny.prepare(kTop + Eigen::Vector3d(0.003, 0.002, 0)), InputError);
+
+  const nlohmann::json model = {{"mesh", "unused"},
+                                {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                                {"boundary", {{"fixed", {{{"set", "bottom"}}}}}}};
+  const nlohmann::json input = {{"kind", "press"}, {"start", {0.05, 0.05, 0.06}}, {"direction", {0, 0, -1}},
+                                {"depth", 0.005}, {"ramp_time", 0.2}};
+  for (const nlohmann::json& regions : {nlohmann::json{{"radius", -1}},
+                                        nlohmann::json{{"radius", 0.02}, {"coupling", "iterate"}},
+                                        nlohmann::json{{"radius", 0.02}, {"secondary_every", 0}},
+                                        nlohmann::json{{"radius", 0.02}, {"skip_below", -1}},
+                                        nlohmann::json{{"radius", 0.02}, {"unknown", 1}}}) {
+    const nlohmann::json cfg = {{"model", model}, {"probe", {{"stiffness", 100}}}, {"input", input}, {"regions", regions}};
+    try {
+      haptic::read_haptic_config(io::JsonReader(cfg, "scene.json"), *b.mesh);
+      ADD_FAILURE() << regions.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("/regions"), std::string::npos) << e.what();
+    }
+  }
+}
