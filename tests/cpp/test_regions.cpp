@@ -5,6 +5,7 @@
 // nothing moved is counted; bad region input is refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "softsim/haptic/haptic_config.hpp"
@@ -73,11 +74,15 @@ TEST(PrimaryRegion, SplitsNodesIntoInteriorInterfaceAndSecondary) {
   const regions::PrimaryRegion r = regions::select_primary_region(m, centre, 0.025);
   ASSERT_FALSE(r.interface.empty());
   std::vector<int> primary_touch(m.num_nodes(), 0), secondary_touch(m.num_nodes(), 0);
+  std::vector<char> is_neighbour(m.num_nodes(), 0);
+  for (const auto& t : m.tets)
+    if (std::find(t.begin(), t.end(), centre) != t.end())
+      for (int n : t) is_neighbour[n] = 1;
   std::vector<char> primary(m.num_tets(), 0);
   for (int e : r.elements) primary[e] = 1;
   for (int e = 0; e < m.num_tets(); ++e) {
     bool near = false;
-    for (int n : m.tets[e]) near = near || (m.nodes[n] - kTop).norm() <= 0.025;
+    for (int n : m.tets[e]) near = near || (m.nodes[n] - kTop).norm() <= 0.025 || is_neighbour[n];
     EXPECT_EQ(near, primary[e] != 0) << "element " << e;
     for (int n : m.tets[e]) (primary[e] ? primary_touch : secondary_touch)[n] = 1;
   }
@@ -86,6 +91,12 @@ TEST(PrimaryRegion, SplitsNodesIntoInteriorInterfaceAndSecondary) {
     EXPECT_EQ(r.local[i] >= 0, primary_touch[i] != 0);
   }
   for (int i : r.interface) EXPECT_TRUE(primary_touch[i] && secondary_touch[i]);
+  // However small the radius, the centre's neighbours are interior (a contact triangle on the
+  // centre is solved every frame).
+  const regions::PrimaryRegion tiny = regions::select_primary_region(m, centre, 1e-6);
+  for (const auto& t : m.tets)
+    if (std::find(t.begin(), t.end(), centre) != t.end())
+      for (int n : t) EXPECT_TRUE(tiny.interior[n]) << n;
   // The sub-mesh is the primary elements on renumbered nodes, same geometry.
   ASSERT_EQ(r.submesh.num_tets(), static_cast<int>(r.elements.size()));
   for (std::size_t k = 0; k < r.elements.size(); ++k)
@@ -103,7 +114,7 @@ TEST(Regions, APrimaryRegionCoveringTheMeshIsTheWholeModelBitForBit) {
   const auto rw = haptic::run_haptic(whole, path, 400);
   const auto ra = haptic::run_haptic(all, path, 400);
   ASSERT_NE(all.regions(), nullptr);
-  EXPECT_TRUE(all.regions()->region().interface.empty());
+  EXPECT_TRUE(all.regions()->active()->region().interface.empty());
   for (std::size_t k = 0; k < rw.force.size(); ++k)
     for (int c = 0; c < 3; ++c) ASSERT_EQ(rw.force[k][c], ra.force[k][c]) << "frame " << k;
 }
@@ -122,7 +133,7 @@ TEST(Regions, OnALinearModelBothCouplingsSettleOnTheWholeModelsForce) {
   haptic::HapticScene condensed(b.mesh, b.config(40, "linear"), with_regions(0.03, regions::Coupling::condensed, 10));
   const auto rc = haptic::run_haptic(condensed, path, frames);
   ASSERT_TRUE(condensed.events().empty());
-  ASSERT_FALSE(condensed.regions()->region().interface.empty());
+  ASSERT_FALSE(condensed.regions()->active()->region().interface.empty());
   EXPECT_LT((rc.force.back() - expected).norm(), 1e-6 * expected.norm())
       << rc.force.back().transpose() << " vs " << expected.transpose();
   haptic::HapticScene exchange(b.mesh, b.config(40, "linear"),
@@ -151,7 +162,7 @@ TEST(Regions, ASlidingContactMovesTheRegionWithoutAForceJump) {
   path.slide_speed = 0.02;
   const auto r = haptic::run_haptic(scene, path, 1700);
   ASSERT_TRUE(scene.events().empty());
-  EXPECT_GE(scene.region_builds().builds, 2);  // built at the start, moved as the contact slid
+  EXPECT_GE(scene.regions()->builds().builds, 2);  // built at the start, moved as the contact slid
   double largest_jump = 0, largest_force = 0;
   for (std::size_t k = 401; k < r.force.size(); ++k) {
     largest_jump = std::max(largest_jump, (r.force[k] - r.force[k - 1]).norm());
@@ -167,12 +178,12 @@ TEST(Regions, SecondaryUpdatesThatNothingMovedAreSkippedAndCounted) {
   auto opt = with_regions(0.03, regions::Coupling::exchange, 5, false);
   haptic::HapticScene every(b.mesh, b.config(40), opt);
   haptic::run_haptic(every, path, 2000);
-  EXPECT_EQ(every.regions()->stats().secondary_updates, 400);
-  EXPECT_EQ(every.regions()->stats().secondary_skipped, 0);
+  EXPECT_EQ(every.regions()->totals().secondary_updates, 400);
+  EXPECT_EQ(every.regions()->totals().secondary_skipped, 0);
   opt.regions.skip_below = 1e-6;
   haptic::HapticScene skipping(b.mesh, b.config(40), opt);
   const auto r = haptic::run_haptic(skipping, path, 2000);
-  const auto& st = skipping.regions()->stats();
+  const auto st = skipping.regions()->totals();
   EXPECT_EQ(st.secondary_updates + st.secondary_skipped, 400);
   EXPECT_GT(st.secondary_skipped, 100);  // the held press comes to rest
   EXPECT_GT(st.secondary_updates, 40);   // while it moved, every update was done
@@ -185,9 +196,7 @@ TEST(Regions, BadRegionInputIsRefused) {
   tool.blade = true;
   tool.blade_edge = Eigen::Vector3d(0.01, 0, 0);
   EXPECT_THROW(haptic::HapticScene(b.mesh, b.config(10), tool), InputError);
-  // A radius too small to hold the contact triangle's nodes in the interior.
-  haptic::HapticScene tiny(b.mesh, b.config(10), with_regions(1e-4, regions::Coupling::condensed, 10));
-  EXPECT_THROW(tiny.prepare(kTop + Eigen::Vector3d(0.003, 0.002, 0)), InputError);
+  EXPECT_THROW(haptic::HapticScene(b.mesh, b.config(10), with_regions(0, regions::Coupling::condensed, 10)), InputError);
 
   const nlohmann::json model = {{"mesh", "unused"},
                                 {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
@@ -207,4 +216,30 @@ TEST(Regions, BadRegionInputIsRefused) {
       EXPECT_NE(std::string(e.what()).find("/regions"), std::string::npos) << e.what();
     }
   }
+}
+
+// 001 Fig. 5: the primary radius follows the contact's displacement (a gradient, a minimum and a
+// maximum), one region per size level, handed over without a force jump.
+TEST(Regions, TheAdaptiveRadiusGrowsWithThePressWithoutAForceJump) {
+  Block b;
+  auto opt = with_regions(0.015, regions::Coupling::condensed, 10);
+  opt.regions.adaptive.kind = regions::AdaptiveRadius::Kind::linear;
+  opt.regions.adaptive.max_radius = 0.035;
+  opt.regions.adaptive.levels = 3;
+  opt.regions.adaptive.gradient = 2.5;  // 8 mm of contact displacement: the maximum
+  haptic::HapticScene scene(b.mesh, b.config(40), opt);
+  const auto r = haptic::run_haptic(scene, press_down(kTop, 0.01, 0.4), 800);
+  ASSERT_TRUE(scene.events().empty());
+  const auto& levels = scene.regions()->frames_per_level();
+  EXPECT_GT(levels[0], 0);
+  EXPECT_GT(levels[2], 0);
+  EXPECT_EQ(scene.regions()->builds().builds, 3);
+  EXPECT_DOUBLE_EQ(scene.regions()->active_radius(), 0.035);
+  double largest_jump = 0, largest_force = 0;
+  for (std::size_t k = 1; k < r.force.size(); ++k) {
+    largest_jump = std::max(largest_jump, (r.force[k] - r.force[k - 1]).norm());
+    largest_force = std::max(largest_force, r.force[k].norm());
+  }
+  // The press itself changes the force by about peak / 400 per frame.
+  EXPECT_LT(largest_jump, 0.01 * largest_force) << largest_jump << " N of " << largest_force << " N";
 }

@@ -114,6 +114,21 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
     o.interpolate = r->get_bool("interpolate", o.interpolate);
     o.skip_below = r->get_double("skip_below", o.skip_below);
     r->require(o.skip_below >= 0 && std::isfinite(o.skip_below), "skip_below", "a displacement >= 0 m (0: never skip)");
+    if (const auto a = r->optional("adaptive")) {
+      auto& ad = o.adaptive;
+      ad.kind = a->get_choice("kind", {"linear", "threshold"}) == "linear" ? regions::AdaptiveRadius::Kind::linear
+                                                                          : regions::AdaptiveRadius::Kind::threshold;
+      ad.max_radius = a->get_positive("max_radius");
+      a->require(ad.max_radius > o.radius, "max_radius", "a radius above regions.radius (m)");
+      ad.gradient = a->get_double("gradient", ad.gradient);
+      a->require(ad.gradient >= 0 && std::isfinite(ad.gradient), "gradient", "m of radius per m of displacement, >= 0");
+      ad.threshold = a->get_positive("threshold", ad.threshold);
+      ad.levels = a->get_int32("levels", ad.levels);
+      a->require(ad.levels >= 2 && ad.levels <= 64, "levels", "a level count in [2, 64]");
+      ad.hold_frames = a->get_int32("hold_frames", ad.hold_frames);
+      a->require(ad.hold_frames >= 0 && ad.hold_frames <= 1000000, "hold_frames", "a frame count in [0, 10^6]");
+      a->reject_unknown();
+    }
     r->reject_unknown();
   }
   read_input(cfg.at("input"), mesh, c);

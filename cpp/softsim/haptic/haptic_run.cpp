@@ -65,31 +65,32 @@ nlohmann::json rows(const std::vector<Eigen::Vector3d>& v) {
 // The linked regions' layout and work (null for the whole model): the current primary region,
 // how often it was built, and the secondary updates done and skipped over the run.
 nlohmann::json regions_payload(const HapticScene& scene) {
-  if (!scene.options().use_regions) return nullptr;
+  const regions::RegionTracker* t = scene.regions();
+  if (!t) return nullptr;
   const auto& o = scene.options().regions;
-  const auto& b = scene.region_builds();
-  regions::RegionStats st = b.retired;
+  const auto& b = t->builds();
+  const regions::RegionStats st = t->totals();
   nlohmann::json region = nullptr;
-  if (const auto* r = scene.regions()) {
-    const auto& now = r->stats();
-    st.frames += now.frames;
-    st.secondary_updates += now.secondary_updates;
-    st.secondary_skipped += now.secondary_skipped;
-    st.secondary_seconds += now.secondary_seconds;
-    st.secondary_max_seconds = std::max(st.secondary_max_seconds, now.secondary_max_seconds);
+  if (const auto* r = t->active())
     region = {{"centre_node", r->region().centre},
+              {"radius", r->region().radius},
               {"primary_tets", r->region().elements.size()},
               {"primary_nodes", r->region().nodes.size()},
               {"interface_nodes", r->region().interface.size()},
-              {"setup_seconds", now.setup_seconds}};
-  }
+              {"setup_seconds", r->stats().setup_seconds}};
+  const char* adaptive[] = {"fixed", "linear", "threshold"};
   return {{"coupling", o.coupling == regions::Coupling::exchange ? "exchange" : "condensed"},
           {"radius", o.radius},
+          {"adaptive", {{"kind", adaptive[static_cast<int>(o.adaptive.kind)]},
+                        {"max_radius", o.adaptive.max_radius},
+                        {"levels", o.adaptive.levels},
+                        {"frames_per_level", t->frames_per_level()}}},
           {"secondary_every", o.secondary_every},
           {"interpolate", o.interpolate},
           {"skip_below", o.skip_below},
           {"primary", region},
           {"builds", b.builds},
+          {"switches", b.switches},
           {"build_seconds_total", b.seconds},
           {"build_seconds_max", b.max_seconds},
           {"frames", st.frames},

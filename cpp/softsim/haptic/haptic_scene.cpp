@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/io/errors.hpp"
 
@@ -52,71 +51,22 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
   if (options_.use_regions) {
     if (options_.contact == ContactMode::tool) throw InputError("haptic: regions need contact \"grasp\" or \"push\", not \"tool\"");
     if (options_.blade) throw InputError("haptic: regions and a blade cannot be combined (a cut changes the regions)");
-    const hybrid::DhdConfig& m = model_->config();
-    masses_ = dynamics::lumped_mass(*mesh_, m.material.elastic.density);
-    Eigen::VectorXd gravity = Eigen::VectorXd::Zero(3 * mesh_->num_nodes());
-    for (int i = 0; i < mesh_->num_nodes(); ++i) gravity.segment<3>(3 * i) = masses_[i] * m.scene.gravity;
-    linear_ = std::make_unique<regions::LinearModel>(
-        *mesh_, m.material,
-        dynamics::constrained_mask(dynamics::resolve_constraints(m.scene, mesh_->num_nodes()), mesh_->num_nodes()),
-        std::move(gravity));
+    regions_ = std::make_unique<regions::RegionTracker>(*mesh_, model_->config(), model_->kinds(), model_->dt(),
+                                                        substeps_, options_.regions);
   }
-  rest_.assign(3 * static_cast<std::size_t>(mesh_->num_nodes()), 0.0);
   reset();
 }
 
 const double* HapticScene::displacement() const {
   if (!options_.use_regions) return model_->displacement();
-  return regions_ ? regions_->displacement() : rest_.data();
+  return regions_->displacement();
 }
 
 void HapticScene::prepare(const Eigen::Vector3d& probe) {
-  if (!options_.use_regions || regions_) return;
+  if (!options_.use_regions || regions_->active()) return;
   if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
-  build_regions(surface_.closest(probe, displacement()));
-}
-
-void HapticScene::follow_contact_with_regions() {
-  const auto& tri = contact_.nodes;
-  if (regions_ && regions_->interior(tri[0]) && regions_->interior(tri[1]) && regions_->interior(tri[2])) return;
-  build_regions(contact_);
-}
-
-void HapticScene::build_regions(const SurfacePoint& around) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  const auto& tri = around.nodes;
-  const int a = static_cast<int>(std::max_element(around.weights.begin(), around.weights.end()) - around.weights.begin());
-  regions::PrimaryRegion region = regions::select_primary_region(*mesh_, tri[a], options_.regions.radius);
-  for (int node : tri)
-    if (!region.interior[node])
-      throw InputError("haptic: the primary region (radius " + std::to_string(options_.regions.radius) +
-                       " m) does not hold the contact triangle; choose a larger radius");
-  // A moved region starts from what its predecessor published: the primary nodes with their
-  // previous step (the central difference resumes), the rest where the secondary put them, at
-  // rest (quasi-static).
-  std::vector<double> u, u_before;
-  if (regions_) {
-    regions_->refresh_secondary();
-    const std::size_t n3 = rest_.size();
-    u.assign(regions_->displacement(), regions_->displacement() + n3);
-    u_before = u;
-    regions_->primary_previous(u_before.data());
-    const auto& st = regions_->stats();
-    auto& r = region_builds_.retired;
-    r.frames += st.frames;
-    r.secondary_updates += st.secondary_updates;
-    r.secondary_skipped += st.secondary_skipped;
-    r.secondary_seconds += st.secondary_seconds;
-    r.secondary_max_seconds = std::max(r.secondary_max_seconds, st.secondary_max_seconds);
-  }
-  regions_ = std::make_unique<regions::RegionSolver>(*mesh_, model_->config(), model_->kinds(), masses_, *linear_,
-                                                     model_->dt(), substeps_, std::move(region), options_.regions);
-  if (!u.empty()) regions_->start_from(u, u_before);
-  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  ++region_builds_.builds;
-  region_builds_.seconds += seconds;
-  region_builds_.max_seconds = std::max(region_builds_.max_seconds, seconds);
+  const SurfacePoint s = surface_.closest(probe, displacement());
+  regions_->follow(s.nodes, s.weights, frames_);
 }
 
 Eigen::Vector3d HapticScene::regions_frame(const Eigen::Vector3d& probe) {
@@ -130,10 +80,10 @@ Eigen::Vector3d HapticScene::regions_frame(const Eigen::Vector3d& probe) {
     }
   }
   if (!in_contact_) {
-    if (regions_) regions_->frame({});
+    regions_->frame({});
     return Eigen::Vector3d::Zero();
   }
-  follow_contact_with_regions();
+  regions_->follow(contact_.nodes, contact_.weights, frames_);
   for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
   regions_->frame(applied_);
   contact_ = surface_.at(contact_.triangle, contact_.weights, regions_->displacement());
@@ -148,7 +98,7 @@ void HapticScene::reset() {
 
 void HapticScene::back_to_rest() {
   model_->reset();  // cuts are permanent: the model returns to rest with its cut mesh
-  if (regions_) regions_->start_from({}, {});
+  if (regions_) regions_->back_to_rest();
   in_contact_ = false;
   tool_touching_ = false;
   contact_ = SurfacePoint();

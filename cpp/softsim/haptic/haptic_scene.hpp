@@ -21,7 +21,7 @@
 
 #include "softsim/haptic/contact_surface.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
-#include "softsim/regions/region_solver.hpp"
+#include "softsim/regions/region_tracker.hpp"
 
 namespace softsim::haptic {
 
@@ -81,16 +81,9 @@ class HapticScene {
   hybrid::DhdScene& model() { return *model_; }
   const hybrid::DhdScene& model() const { return *model_; }
   const ContactSurface& surface() const { return surface_; }
-  // The linked regions in use (null: the whole model, or no region built yet), how often the
-  // primary region was built (the first, then each move to follow the contact) and the time
-  // that took.
-  const regions::RegionSolver* regions() const { return regions_.get(); }
-  struct RegionBuilds {
-    long builds = 0;
-    double seconds = 0, max_seconds = 0;
-    regions::RegionStats retired;  // statistics of the regions replaced by a move, summed
-  };
-  const RegionBuilds& region_builds() const { return region_builds_; }
+  // The linked regions (null: the whole model): the active region, how often regions were
+  // built and handed over, and their statistics.
+  const regions::RegionTracker* regions() const { return regions_.get(); }
   // The model's displacement now (3 per node): the whole model's, or the regions' published one.
   const double* displacement() const;
   // The blade's sweeps so far (one per frame the tool moved) and their wall time (s).
@@ -108,11 +101,6 @@ class HapticScene {
   void follow_cuts();
   // The model at rest and no contact; frames and events kept (recovery from a failure).
   void back_to_rest();
-  // Regions: a primary region whose interior holds the contact triangle, built around its
-  // nearest node the first time and moved (rebuilt from the published state) when the contact
-  // slides out of it.
-  void follow_contact_with_regions();
-  void build_regions(const SurfacePoint& around);
   Eigen::Vector3d regions_frame(const Eigen::Vector3d& probe);
 
   std::shared_ptr<const mesh::TetMesh> mesh_;
@@ -130,12 +118,7 @@ class HapticScene {
   std::size_t cuts_seen_ = 0;
   BladeStats blade_stats_;  // the model's cut events the surface has followed
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
-  // Regions: the small-strain model of the whole mesh (built once), lumped masses, the solver.
-  std::unique_ptr<regions::LinearModel> linear_;
-  std::vector<double> masses_;
-  std::unique_ptr<regions::RegionSolver> regions_;
-  RegionBuilds region_builds_;
-  std::vector<double> rest_;  // zero displacement (before the first region exists)
+  std::unique_ptr<regions::RegionTracker> regions_;  // the linked regions, or null
 };
 
 // The explicit step and substep count of a frame: the largest step ≤ `dt_limit` that divides

@@ -17,6 +17,12 @@ PrimaryRegion select_primary_region(const mesh::TetMesh& mesh, int centre, doubl
   const Eigen::Vector3d c = mesh.nodes[centre];
   std::vector<char> near(mesh.num_nodes(), 0);
   for (int i = 0; i < mesh.num_nodes(); ++i) near[i] = (mesh.nodes[i] - c).norm() <= radius;
+  // The centre's neighbours count as near whatever the radius, so that every node sharing an
+  // element with the centre is interior: a contact triangle on the centre is then always
+  // solved every frame.
+  for (const auto& t : mesh.tets)
+    if (t[0] == centre || t[1] == centre || t[2] == centre || t[3] == centre)
+      for (int n : t) near[n] = 1;
   // 1: touched by a primary element; 2: by a secondary one (both: interface).
   std::vector<char> touched(mesh.num_nodes(), 0);
   for (int e = 0; e < mesh.num_tets(); ++e) {

@@ -26,12 +26,31 @@ namespace softsim::regions {
 
 enum class Coupling { exchange, condensed };
 
+// The primary region's size (001 §5 "adaptable asynchronous regions", Fig. 5): fixed, or a
+// radius that grows with the deformation between a minimum and a maximum, in `levels` steps
+// (each level's region is built once per contact node and kept).
+struct AdaptiveRadius {
+  enum class Kind {
+    fixed,      // always RegionOptions::radius
+    linear,     // 001 Fig. 5: r = radius + gradient × |u_contact|, clamped to [radius, max_radius]
+    threshold,  // r = distance to the contact node of the farthest node (within max_radius) that
+                // moved more than `threshold`: the region holds all of the visible deformation
+  };
+  Kind kind = Kind::fixed;
+  double max_radius = 0.04;  // m
+  double gradient = 2.0;     // m of radius per m of contact displacement
+  double threshold = 1e-3;   // m
+  int levels = 4;            // radii radius ... max_radius, evenly spaced
+  int hold_frames = 100;     // a region shrinks only after the smaller size held this many frames
+};
+
 struct RegionOptions {
   double radius = 0.02;         // m: primary elements have a node this close to the contact node
   Coupling coupling = Coupling::condensed;
   int secondary_every = 10;     // frames between secondary updates (a rate of 1 kHz / every)
   bool interpolate = true;      // exchange: interface values interpolated between updates (001 Fig. 4)
   double skip_below = 0;        // m: skip a secondary update whose input moved less (0: never skip)
+  AdaptiveRadius adaptive;
 };
 
 struct RegionStats {
@@ -73,6 +92,7 @@ class RegionSolver {
   void primary_previous(double* u) const;
   const PrimaryRegion& region() const { return region_; }
   const RegionStats& stats() const { return stats_; }
+  RegionStats& stats() { return stats_; }
   const dynamics::ExplicitSolver& primary() const { return *solver_; }
   double time() const { return solver_->time(); }
 
