@@ -5,7 +5,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake git
   libeigen3-dev nlohmann-json3-dev libceres-dev libgsl-dev
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev libsuitesparse-dev
   gmsh libgmsh-dev calculix-ccx
   python3 python3-matplotlib python3-numpy python3-scipy python3-pytest python3-tqdm python3-meshio
   python3-distributed

@@ -1,5 +1,6 @@
 #include "softsim/regions/secondary_region.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "softsim/fem/assembly.hpp"
@@ -33,8 +34,7 @@ ExchangeSecondary::ExchangeSecondary(const LinearModel& model, const PrimaryRegi
   secondary_ = free_dofs(n, model.constrained, [&](int i) { return !region.interior[i]; });
   primary_ = free_dofs(n, model.constrained, [&](int i) { return region.interior[i] != 0; });
   K_sp_ = dof_block(model.K, secondary_, primary_);
-  solver_.factorize(dof_block(model.K, secondary_, secondary_), multirate::LinearSolverKind::kSparse,
-                    "regions: secondary region (001 eq. 7)");
+  solver_.factorize(dof_block(model.K, secondary_, secondary_), "regions: secondary region (001 eq. 7)");
   u_p_.setZero(static_cast<int>(primary_.size()));
   rhs_.setZero(static_cast<int>(secondary_.size()));
 }
@@ -66,22 +66,26 @@ CondensedSecondary::CondensedSecondary(const LinearModel& model, const PrimaryRe
   interface_ = free_dofs(n, model.constrained, [&](int i) { return slot_of_node[i] >= 0; });
   secondary_ = free_dofs(n, model.constrained, [&](int i) { return in_far[i] && region.local[i] < 0; });
   for (int d : interface_) interface_slot_.push_back(3 * slot_of_node[d / 3] + d % 3);
-  solver_.factorize(dof_block(Ks, secondary_, secondary_), multirate::LinearSolverKind::kSparse,
-                    "regions: secondary region (condensation)");
+  solver_.factorize(dof_block(Ks, secondary_, secondary_), "regions: secondary region (condensation)");
   K_si_ = dof_block(Ks, secondary_, interface_);
   const Eigen::SparseMatrix<double> K_ii = dof_block(Ks, interface_, interface_);
-  // S_II = K_II − K_IS K_SS⁻¹ K_SI, one column per interface dof (K_IS = K_SIᵀ: symmetric).
+  // S_II = K_II − K_IS K_SS⁻¹ K_SI (K_IS = K_SIᵀ: symmetric), solved for blocks of interface
+  // dofs at once (the supernodal solve runs them as matrix products).
   const int ni = static_cast<int>(interface_.size());
+  const int ns = static_cast<int>(secondary_.size());
   S_ = Eigen::MatrixXd(K_ii);
-  Eigen::VectorXd x(static_cast<int>(secondary_.size()));
-  for (int j = 0; j < ni; ++j) {
-    x = K_si_.col(j);
-    solver_.solve_in_place(x);
-    S_.col(j).noalias() -= K_si_.transpose() * x;
+  constexpr int kBlock = 64;
+  Eigen::MatrixXd X(ns, kBlock);
+  for (int j0 = 0; j0 < ni; j0 += kBlock) {
+    const int w = std::min(kBlock, ni - j0);
+    X.resize(ns, w);
+    X = Eigen::MatrixXd(K_si_.middleCols(j0, w));
+    solver_.solve_in_place(X);
+    S_.middleCols(j0, w).noalias() -= K_si_.transpose() * X;
   }
   S_ = 0.5 * (S_ + S_.transpose()).eval();  // symmetric to round-off, exactly
   g_s_ = gather(model.gravity_force, secondary_);
-  x = g_s_;
+  Eigen::VectorXd x = g_s_;
   solver_.solve_in_place(x);
   h_ = K_si_.transpose() * x;
   u_i_.setZero(ni);

@@ -24,8 +24,8 @@
 
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
-#include "softsim/multirate/spd_solver.hpp"
 #include "softsim/regions/primary_region.hpp"
+#include "softsim/regions/sparse_cholesky.hpp"
 
 namespace softsim::regions {
 
@@ -54,7 +54,7 @@ class ExchangeSecondary {
   const LinearModel* model_;
   std::vector<int> secondary_, primary_;  // global dofs
   Eigen::SparseMatrix<double> K_sp_;
-  multirate::SpdSolver solver_;
+  SparseCholesky solver_;
   Eigen::VectorXd u_p_, rhs_;
 };
 
@@ -79,7 +79,7 @@ class CondensedSecondary {
   Eigen::VectorXd h_;                       // condensed gravity load at full gravity
   Eigen::SparseMatrix<double> K_si_;
   Eigen::VectorXd g_s_;                     // gravity on the secondary dofs at full gravity
-  multirate::SpdSolver solver_;
+  SparseCholesky solver_;
   Eigen::VectorXd u_i_, f_i_, rhs_;
 };
 
