@@ -30,7 +30,10 @@ int main(int argc, char** argv) {
       "            | {\"kind\": \"growing_sine\", \"start\", \"direction\", \"amplitude\": m, \"frequency\": Hz, \"growth_time\": s}\n"
       "            | {\"kind\": \"chirp\", \"start\", \"direction\", \"amplitude\": m, \"start_frequency\": Hz, \"end_frequency\": Hz, \"sweep_time\": s}\n"
       "            | {\"kind\": \"recorded\", \"path\": \"file of lines t x y z\"},\n"
-      "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s}}   (serve)\n"
+      "   \"regions\": {\"radius\": m, \"coupling\": \"condensed\"|\"exchange\", \"secondary_every\": 10, \"interpolate\": true,\n"
+      "               \"skip_below\": 0 m, \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
+      "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s,\n"
+      "                 \"visual\": {\"path\": FILE, \"every\": 33}}}   (serve)\n"
       "  Full reference: cpp/apps/haptic_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
     const io::JsonReader& cfg = ctx.config();
@@ -42,12 +45,14 @@ int main(int argc, char** argv) {
     haptic::HapticRecord record;
     if (ctx.mode == "serve") {
       const auto& rt = config.realtime;
+      std::unique_ptr<haptic::VisualStream> visual;
+      if (!rt.visual.path.empty()) visual = std::make_unique<haptic::VisualStream>(*mesh, rt.visual);
       if (rt.source == haptic::RealtimeConfig::Source::udp) {
-        record = haptic::serve_udp(scene, rt.port, rt.max_frames, rt.idle_timeout, [](int port) {
-          std::cerr << "haptic_sim: listening on udp 127.0.0.1:" << port << std::endl;
-        });
+        record = haptic::serve_udp(
+            scene, rt.port, rt.max_frames, rt.idle_timeout,
+            [](int port) { std::cerr << "haptic_sim: listening on udp 127.0.0.1:" << port << std::endl; }, visual.get());
       } else {
-        record = haptic::serve_lines(scene, std::cin, std::cout, rt.max_frames);
+        record = haptic::serve_lines(scene, std::cin, std::cout, rt.max_frames, visual.get());
       }
     } else {
       record = haptic::run_haptic(scene, config.input, config.frames);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/haptic/haptic_config.hpp"
 #include "softsim/haptic/haptic_run.hpp"
 #include "softsim/haptic/haptic_scene.hpp"
@@ -242,4 +243,47 @@ TEST(Regions, TheAdaptiveRadiusGrowsWithThePressWithoutAForceJump) {
   }
   // The press itself changes the force by about peak / 400 per frame.
   EXPECT_LT(largest_jump, 0.01 * largest_force) << largest_jump << " N of " << largest_force << " N";
+}
+
+// A moved region resumes the central difference from the state it is handed: stepping on from a
+// resumed (u_n, u_{n-1}) equals stepping on without interruption, to round-off (u_{n-1} is
+// recovered from the velocity, (u_n - u_{n-1}) / Δt, so only to the last bits).
+TEST(ExplicitSolver, AResumedStateContinuesTheCentralDifference) {
+  Block b;
+  const hybrid::DhdConfig c = b.config(15);
+  const std::vector<fem::ElementKind> kinds(b.mesh->num_tets(), fem::ElementKind::tled);
+  fem::ElementSet e1(*b.mesh, kinds, c.material), e2(*b.mesh, kinds, c.material);
+  dynamics::Scene scene = c.scene;
+  scene.gravity = Eigen::Vector3d(0, 0, -9.81);
+  dynamics::ExplicitOptions opt;
+  opt.dt = 2e-4;
+  opt.steps = 1000;
+  opt.damping_alpha = 15;
+  const auto masses = dynamics::lumped_mass(*b.mesh, c.material.elastic.density);
+  dynamics::ExplicitSolver whole(e1, masses, scene, opt), resumed(e2, masses, scene, opt);
+  whole.advance(300);
+  const std::size_t n3 = 3 * static_cast<std::size_t>(b.mesh->num_nodes());
+  std::vector<double> u(whole.displacement(), whole.displacement() + n3), v(n3), before(n3);
+  whole.velocity(v.data());
+  for (std::size_t q = 0; q < n3; ++q) before[q] = u[q] - opt.dt * v[q];
+  resumed.set_resumed_state(u, before);
+  resumed.reset();
+  whole.advance(200);
+  resumed.advance(200);
+  double diff = 0, size = 0;
+  for (std::size_t q = 0; q < n3; ++q) {
+    diff = std::max(diff, std::abs(whole.displacement()[q] - resumed.displacement()[q]));
+    size = std::max(size, std::abs(whole.displacement()[q]));
+  }
+  ASSERT_GT(size, 1e-4);
+  EXPECT_LT(diff, 1e-12 * size) << diff << " of " << size;
+  // The start-up step of a fresh start from the same (u, v) is only second-order accurate.
+  fem::ElementSet e3(*b.mesh, kinds, c.material);
+  dynamics::ExplicitSolver restarted(e3, masses, scene, opt);
+  restarted.set_initial_state(u, v);
+  restarted.reset();
+  restarted.advance(200);
+  double diff_restart = 0;
+  for (std::size_t q = 0; q < n3; ++q) diff_restart = std::max(diff_restart, std::abs(whole.displacement()[q] - restarted.displacement()[q]));
+  EXPECT_GT(diff_restart, 100 * diff);
 }

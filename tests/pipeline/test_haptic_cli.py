@@ -137,3 +137,62 @@ def test_static_model_and_model_probe_are_refused(scene):
     write_json(tmp / "h.json", c)
     r = run_tool("haptic_sim", "run", "--config", tmp / "h.json", "--out", tmp / "run.json")
     assert r.returncode == 2 and "/model/solver" in r.stderr and "explicit" in r.stderr, r.stderr
+
+
+def read_surface_stream(path):
+    """The visual stream: its header, node indices and pictures (t, positions N x 3)."""
+    import numpy as np
+    data = path.read_bytes()
+    end = data.index(b"\n")
+    name, version, word, count = data[:end].decode().split()
+    assert (name, version, word) == ("softsim_surface", "1", "nodes")
+    n = int(count)
+    nodes = np.frombuffer(data, dtype=np.int32, count=n, offset=end + 1)
+    offset, pictures = end + 1 + 4 * n, []
+    while offset < len(data):
+        t = np.frombuffer(data, dtype=np.float64, count=1, offset=offset)[0]
+        x = np.frombuffer(data, dtype=np.float32, count=3 * n, offset=offset + 8).reshape(n, 3)
+        pictures.append((t, x))
+        offset += 8 + 12 * n
+    assert offset == len(data)
+    return nodes, pictures
+
+
+def test_the_visual_stream_carries_the_deformed_surface_at_its_own_rate(scene):
+    import numpy as np
+    tmp, lines, config = scene
+    config(realtime={"source": "stdin", "visual": {"path": str(tmp / "surface.bin"), "every": 20}})
+    served = subprocess.run([str(tool("haptic_sim")), "serve", "--config", tmp / "h.json", "--out", tmp / "serve.json"],
+                            input="\n".join(lines) + "\n", capture_output=True, text=True)
+    assert served.returncode == 0, served.stderr
+    assert len(served.stdout.splitlines()) == FRAMES  # every frame still answered
+    nodes, pictures = read_surface_stream(tmp / "surface.bin")
+    mesh = json.loads((tmp / "mesh.json").read_text())["payload"]
+    rest = np.array(mesh["nodes"])[nodes]
+    assert sorted(set(np.array(mesh["boundary"]).ravel())) == list(nodes)
+    assert len(pictures) == FRAMES // 20
+    assert [t for t, _ in pictures] == pytest.approx([float(lines[20 * k - 1].split()[0]) for k in range(1, 11)])
+    # The surface is pressed under the tip (0.03, 0.03) by up to 4 mm and stays put far from it.
+    t, x = pictures[-1]
+    moved = np.linalg.norm(x - rest, axis=1)
+    under = np.argmin(np.linalg.norm(rest[:, :2] - [0.03, 0.03], axis=1) + 10 * abs(rest[:, 2] - 0.03))
+    assert 0.001 < moved[under] < 0.0045
+    assert moved[np.linalg.norm(rest[:, :2] - [0.03, 0.03], axis=1) > 0.025].max() < 0.2 * moved[under]
+
+
+def test_served_regions_answer_with_the_offline_regions_forces(scene):
+    tmp, lines, config = scene
+    config(regions={"radius": 0.015, "coupling": "condensed", "secondary_every": 5})
+    offline = run_tool("haptic_sim", "run", "--config", tmp / "h.json", "--out", tmp / "run.json")
+    assert offline.returncode == 0, offline.stderr
+    served = subprocess.run([str(tool("haptic_sim")), "serve", "--config", tmp / "h.json", "--out", tmp / "serve.json"],
+                            input="\n".join(lines) + "\n", capture_output=True, text=True)
+    assert served.returncode == 0, served.stderr
+    forces = payload(tmp / "run.json")["force"]
+    answers = [[float(x) for x in a.split()[1:]] for a in served.stdout.splitlines()]
+    # serve builds the region at the first contact, run before the first frame: the same region.
+    import numpy as np
+    np.testing.assert_allclose(answers, forces, rtol=1e-9, atol=1e-12)
+    regions = payload(tmp / "serve.json")["regions"]
+    assert regions["coupling"] == "condensed" and regions["primary"]["interface_nodes"] > 0
+    assert payload(tmp / "serve.json")["solver"] == "regions"

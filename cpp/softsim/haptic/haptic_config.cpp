@@ -68,6 +68,13 @@ void read_realtime(const io::JsonReader& r, RealtimeConfig& rt) {
   rt.max_frames = r.get_int("max_frames", 0);
   r.require(rt.max_frames >= 0, "max_frames", "a frame count >= 0 (0: until the input ends)");
   rt.idle_timeout = r.get_positive("idle_timeout", rt.idle_timeout);
+  if (const auto v = r.optional("visual")) {
+    rt.visual.path = v->get_string("path");
+    v->require(!rt.visual.path.empty(), "path", "a file or named pipe for the surface stream");
+    rt.visual.every = v->get_int32("every", rt.visual.every);
+    v->require(rt.visual.every >= 1 && rt.visual.every <= 1000000, "every", "a frame count in [1, 10^6]");
+    v->reject_unknown();
+  }
   r.reject_unknown();
 }
 

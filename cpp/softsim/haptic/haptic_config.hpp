@@ -7,6 +7,7 @@
 
 #include "softsim/haptic/haptic_scene.hpp"
 #include "softsim/haptic/probe_path.hpp"
+#include "softsim/haptic/visual_stream.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/io/json_reader.hpp"
 
@@ -18,6 +19,7 @@ struct RealtimeConfig {
   int port = 0;          // udp: the loopback port to listen on (0: any free port, printed)
   long max_frames = 0;   // 0: until the input ends
   double idle_timeout = 5.0;  // udp: s without a datagram before the client counts as gone
+  VisualConfig visual;        // the deformed surface at a lower rate (visual_stream.hpp)
 };
 
 struct HapticConfig {

@@ -53,7 +53,8 @@ class Socket {
 
 }  // namespace
 
-HapticRecord serve_lines(HapticScene& scene, std::istream& in, std::ostream& out, long max_frames) {
+HapticRecord serve_lines(HapticScene& scene, std::istream& in, std::ostream& out, long max_frames,
+                         VisualStream* visual) {
   HapticRecord record;
   if (max_frames > 0) record.reserve(max_frames);
   std::string line;
@@ -68,12 +69,13 @@ HapticRecord serve_lines(HapticScene& scene, std::istream& in, std::ostream& out
     if (!live_frame(scene, line.c_str(), where, last_t, record, received, answer, length)) continue;
     out.write(answer, length);
     out.flush();
+    if (visual) visual->after_frame(record.frames, last_t, scene.displacement());
   }
   return record;
 }
 
 HapticRecord serve_udp(HapticScene& scene, int port, long max_frames, double idle_timeout,
-                       const std::function<void(int port)>& on_listen) {
+                       const std::function<void(int port)>& on_listen, VisualStream* visual) {
   Socket sock;
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
@@ -119,6 +121,7 @@ HapticRecord serve_udp(HapticScene& scene, int port, long max_frames, double idl
     if (std::strcmp(buffer, "end") == 0) break;
     if (!live_frame(scene, buffer, where, last_t, record, received, answer, length)) continue;
     ::sendto(sock.fd(), answer, static_cast<std::size_t>(length), 0, reinterpret_cast<sockaddr*>(&from), from_len);
+    if (visual) visual->after_frame(record.frames, last_t, scene.displacement());
   }
   return record;
 }

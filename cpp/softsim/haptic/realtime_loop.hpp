@@ -10,17 +10,20 @@
 #include <iosfwd>
 
 #include "softsim/haptic/haptic_run.hpp"
+#include "softsim/haptic/visual_stream.hpp"
 
 namespace softsim::haptic {
 
 // Serves lines from `in` until it ends (or `max_frames` > 0 frames). InputError, naming the
 // line, for a malformed line, a time that does not increase or a position that is not finite.
-HapticRecord serve_lines(HapticScene& scene, std::istream& in, std::ostream& out, long max_frames);
+// With `visual`, the deformed surface goes to it after each answer (at its own rate).
+HapticRecord serve_lines(HapticScene& scene, std::istream& in, std::ostream& out, long max_frames,
+                         VisualStream* visual = nullptr);
 
 // Serves UDP datagrams on 127.0.0.1:`port` (0: a free port) until "end" (or `max_frames`).
 // `on_listen` receives the bound port before the first datagram is awaited. A client silent for
 // `idle_timeout` seconds is an InputError (the bridge went away without "end").
 HapticRecord serve_udp(HapticScene& scene, int port, long max_frames, double idle_timeout,
-                       const std::function<void(int port)>& on_listen);
+                       const std::function<void(int port)>& on_listen, VisualStream* visual = nullptr);
 
 }  // namespace softsim::haptic
