@@ -1,0 +1,94 @@
+"""The real-time loop as a device drives it: `haptic_sim serve` fed one tip position per frame
+at the haptic rate by a paced client on a real pipe (stdin/stdout), for a wall-clock duration.
+Per frame the client records the round trip (position sent -> force received), the latency a
+device bridge sees; the served artifact gives the compute time per frame beside it.
+
+Pipeline stage (mark it "exclusive": true):
+    {"python": "pipeline.stages.haptic_realtime", "exclusive": true,
+     "config": {"scene": {... a haptic_sim config with "model": {"mesh": "@mesh", ...} ...},
+                "press": {"start": [x, y, z], "depth": m, "ramp_time": s},
+                "seconds": 60, "rate": 1000}}
+
+The client presses straight down (-z) from the boundary node nearest to `start` to `depth` over
+`ramp_time`, then holds. It keeps the schedule: frame k is sent at t0 + k / rate, or at once if the
+previous answer came late, so late frames show as such. The artifact ("haptic_realtime" v1) keeps
+every round trip (s), the served payload's timing and regions blocks, the CPU and the binary's
+sha256.
+"""
+TOOLS = ("haptic_sim",)
+
+import json
+import os
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from pipeline.artifacts import read_artifact, write_artifact
+from pipeline.bench import cpu_description
+from pipeline.paths import ROOT
+from pipeline.stages.stability_common import read_payload, tool_hashes, tool_path
+
+SCHEMA = "haptic_realtime"
+TOOL = "pipeline.stages.haptic_realtime"
+
+
+class RealtimeConfigError(ValueError):
+    pass
+
+
+def run(ctx):
+    cfg = ctx.config
+    seconds, rate = cfg.get("seconds", 60), cfg.get("rate", 1000)
+    if not (isinstance(seconds, (int, float)) and 0 < seconds <= 600):
+        raise RealtimeConfigError("/seconds: expected a duration in (0, 600] s")
+    if not (isinstance(rate, (int, float)) and 1 <= rate <= 10000):
+        raise RealtimeConfigError("/rate: expected a frame rate in [1, 10000] Hz")
+    press = cfg["press"]
+    mesh = read_payload(cfg["scene"]["model"]["mesh"])
+    X = np.array(mesh["nodes"])
+    surface = np.unique(np.array(mesh["boundary"]).ravel())
+    origin = X[surface[np.argmin(np.linalg.norm(X[surface] - np.array(press["start"]), axis=1))]]
+    frames = int(round(seconds * rate))
+    scene = dict(cfg["scene"], realtime={"source": "stdin", "max_frames": 0})
+    round_trip = np.zeros(frames)
+    with tempfile.TemporaryDirectory(prefix="haptic_realtime_") as tmp:
+        cfg_path, out_path = Path(tmp) / "scene.json", Path(tmp) / "served.json"
+        cfg_path.write_text(json.dumps(scene))
+        proc = subprocess.Popen([str(tool_path("haptic_sim")), "serve", "--config", str(cfg_path), "--out", str(out_path)],
+                                cwd=ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True, bufsize=1, env=dict(os.environ, OMP_NUM_THREADS="1"))
+        period = 1.0 / rate
+        start = time.perf_counter()
+        for k in range(frames):
+            due = start + k * period
+            while True:  # sleep most of the wait, spin the last 0.2 ms
+                ahead = due - time.perf_counter()
+                if ahead <= 0:
+                    break
+                if ahead > 2e-4:
+                    time.sleep(ahead - 2e-4)
+            t = (k + 1) * period
+            depth = press["depth"] * min(t / press["ramp_time"], 1.0)
+            sent = time.perf_counter()
+            proc.stdin.write(f"{t:.6f} {origin[0]:.9g} {origin[1]:.9g} {origin[2] - depth:.9g}\n")
+            proc.stdin.flush()
+            answer = proc.stdout.readline()
+            round_trip[k] = time.perf_counter() - sent
+            if not answer:
+                break
+        proc.stdin.close()
+        err = proc.stderr.read()
+        code = proc.wait()
+        if code != 0:
+            lines = [l for l in err.splitlines() if l.strip()]
+            raise RuntimeError(f"haptic_sim serve failed (exit {code}): {lines[-1] if lines else 'no message'}")
+        served = read_artifact(out_path)["payload"]
+    payload = {"frames": frames, "rate": rate, "seconds": seconds, "round_trip_seconds": round_trip.tolist(),
+               "timing": served["timing"], "regions": served["regions"], "solver": served["solver"],
+               "model": served["model"], "substeps": served["substeps"], "events": len(served["events"]),
+               "peak_force": float(np.linalg.norm(np.array(served["force"]), axis=1).max()),
+               "cpu": cpu_description(), "tools": tool_hashes(TOOLS)}
+    write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["scene"]["model"]["mesh"]])
