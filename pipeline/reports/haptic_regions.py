@@ -11,7 +11,8 @@ from pipeline.bench import cpu_description
 from pipeline.tables import write_table
 
 # scene label, whole-model stage, regions stages
-SCENES = (("cuboid", "cube_run", "cube"), ("liver", "liver_run", "liver"), ("refined liver", "fine_run", "fine"))
+SCENES = (("cuboid", "cube_run", "cube"), ("liver", "liver_run", "liver"),
+          ("liver, hybrid", "hybrid_run", "hybrid"), ("refined liver", "fine_run", "fine"))
 COUPLINGS = ("condensed", "exchange_interpolated", "exchange_held")
 LABEL = {"condensed": "condensed", "exchange_interpolated": "eq. 7, interpolated", "exchange_held": "eq. 7, held"}
 COLOUR = {"condensed": "tab:green", "exchange_interpolated": "tab:orange", "exchange_held": "tab:red"}
@@ -108,7 +109,7 @@ def plot_forces(scene, whole, rows, path):
 
 def plot_tradeoff(rows, path):
     fig, ax = plots.figure(7, 4.6)
-    markers = {"cuboid": "o", "liver": "s", "refined liver": "^"}
+    markers = {"cuboid": "o", "liver": "s", "liver, hybrid": "D", "refined liver": "^"}
     for c in COUPLINGS:
         for scene, m in markers.items():
             pts = [(r["rms"], 1e3 * r["mean"]) for r in rows if r["coupling"] == c and r["scene"] == scene and np.isfinite(r["rms"])]
@@ -239,8 +240,9 @@ def summary(table, inputs, adaptive, cpu):
              "[inputs](regions_inputs.md), [adaptive radius and skipping](regions_adaptive.md); plots: "
              "[run time against error](regions_tradeoff.png), forces on the "
              "[cuboid](regions_forces_cube.png), [liver](regions_forces_liver.png), "
-             "[refined liver](regions_forces_fine.png).", ""]
-    for scene in ("cuboid", "liver", "refined liver"):
+             "[hybrid liver](regions_forces_hybrid.png) (000's partition: TLED within 5 cm of the tool, linear "
+             "elsewhere), [refined liver](regions_forces_fine.png).", ""]
+    for scene in [s[0] for s in SCENES]:
         rows = [r for r in table + inputs if r["scene"] == scene]
         if not rows:
             continue
