@@ -43,5 +43,8 @@ def report(ctx):
                 "shifts both columns alike.")
     text = ["## Contact: the broad phase", "",
             "The rigid tools' contact searches a grid over the tool's nodes and tests only the nodes near the tool "
-            "([table](search.md); dynamics/contact_search.hpp), on " + cpu + ":", "", *lines, ""]
+            "([table](search.md); dynamics/contact_search.hpp), on " + cpu + ". With the grid a step still reads "
+            "every boundary node's position once (has it moved half the margin since the grid was built?); the "
+            "distance tests, projections and work booking follow the nodes near the tool. Timings on a shared, "
+            "loaded machine vary by tens of percent from run to run:", "", *lines, ""]
     ctx.out("search_summary.md").write_text("\n".join(text) + "\n")

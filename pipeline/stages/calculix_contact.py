@@ -140,8 +140,10 @@ def build_deck(nodes, tets, node_sets, cfg) -> str:
     L += ["*STEP, NLGEOM, INC=100000", "*STATIC", f"{fmt(inc)}, 1.0, {fmt(inc * 1e-4)}, {fmt(inc)}"]
     L += field_controls_lines(1e-6, 1e-6)
     L += ["*BOUNDARY", f"{ref}, 3, 3, {fmt(-cfg['depth'])}",
+          # One print frequency holds for every *NODE PRINT of the step: each increment, so that
+          # the force is known along the way (the displacements are checked at the end only).
           "*NODE PRINT, NSET=REF, FREQUENCY=1", "RF",
-          "*NODE PRINT, NSET=NALL, FREQUENCY=100000000", "U", "*END STEP"]
+          "*NODE PRINT, NSET=NALL, FREQUENCY=1", "U", "*END STEP"]
     return "\n".join(L) + "\n", ref, len(cap)
 
 
