@@ -327,6 +327,21 @@ TEST(MeshTool, ConfigReadsStlAndObjFilesAndNamesBadOnes) {
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
   EXPECT_NE(input_error_of([&] { read("open.stl"); }).find("open.stl: expected a closed surface"), std::string::npos);
+
+  // A fixed orientation: a 2 × 1 × 1 mm box turned 90° about z lies 1 mm along x and 2 mm along y.
+  dir.write("long.stl", ascii_stl(box(Eigen::Vector3d(0, -0.5, -0.5), Eigen::Vector3d(2, 0.5, 0.5))));
+  nlohmann::json j = base_config(10, 0.0);
+  j["boundary"]["tools"] = {{{"shape", "mesh"}, {"file", "long.stl"}, {"scale", 0.001},
+                             {"rotation", {{"axis", {0, 0, 1}}, {"degrees", 90}}}, {"position", {0.015, 0.015, 0.05}}}};
+  const auto turned = hybrid::read_dhd_config(io::JsonReader(j, (dir.dir / "scene.json").string()), m);
+  const auto& s = *turned.scene.tools.at(0).surface;
+  EXPECT_NEAR(s.upper().y(), 0.002, 1e-15);
+  EXPECT_NEAR(s.lower().x(), -0.0005, 1e-15);
+  EXPECT_NEAR(s.upper().x(), 0.0005, 1e-15);
+  j["boundary"]["tools"][0]["rotation"] = {{"axis", {0, 0, 0}}, {"degrees", 90}};
+  EXPECT_NE(input_error_of([&] { hybrid::read_dhd_config(io::JsonReader(j, (dir.dir / "scene.json").string()), m); })
+                .find("/boundary/tools/0/rotation/axis"),
+            std::string::npos);
 }
 
 // dhd_sim with a bad tool file: exit code 2, one line naming the config and the member, no artifact.

@@ -1,6 +1,9 @@
 #include "softsim/hybrid/tool_config.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
 
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/io/errors.hpp"
@@ -11,13 +14,25 @@ namespace softsim::hybrid {
 
 namespace {
 
-// A mesh tool's "file" (× "scale", file units to metres) as a closed surface; a bad file is bad
-// input at /.../file, one line naming the config, the member and what is wrong with the file.
+// A mesh tool's "file" (× "scale", file units to metres, then turned by "rotation" about the
+// frame's origin) as a closed surface; a bad file is bad input at /.../file, one line naming the
+// config, the member and what is wrong with the file.
 std::shared_ptr<const mesh::ClosedSurface> read_tool_surface(const io::JsonReader& t) {
   const std::string path = t.get_input_path("file");
   const double scale = t.get_positive("scale", 1.0);
+  Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
+  if (auto r = t.optional("rotation")) {
+    const Eigen::Vector3d axis = read_vec3(*r, "axis");
+    r->require(axis.norm() > 0, "axis", "a non-zero rotation axis");
+    const double degrees = r->get_double("degrees");
+    r->require(std::isfinite(degrees), "degrees", "a finite angle in degrees");
+    r->reject_unknown();
+    turn = Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+  }
   try {
-    return std::make_shared<const mesh::ClosedSurface>(io::read_surface_file(path, scale), path);
+    mesh::TriangleSurface s = io::read_surface_file(path, scale);
+    for (auto& v : s.vertices) v = turn * v;
+    return std::make_shared<const mesh::ClosedSurface>(std::move(s), path);
   } catch (const InputError& e) {
     throw InputError(t.file() + ": " + t.at("file").pointer() + ": " + e.what());
   }
