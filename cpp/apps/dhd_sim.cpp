@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
     const mesh::TetMesh mesh = io::read_mesh_artifact(mesh_path);
     const hybrid::DhdConfig config = hybrid::read_dhd_config(cfg, mesh);
     if (!config.strain_reference.empty()) ctx.input(config.strain_reference);
+    for (const auto& tool : config.scene.tools)
+      if (tool.surface) ctx.input(tool.surface->source());
     ctx.output(config.output.vtu, "/output/vtu");
 
     if (ctx.flag("--cut-bench")) {

@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
     auto mesh = std::make_shared<const mesh::TetMesh>(io::read_mesh_artifact(mesh_path));
     const haptic::HapticConfig config = haptic::read_haptic_config(cfg, *mesh);
     if (!config.recorded_path.empty()) ctx.input(config.recorded_path);
+    for (const auto& tool : config.model.scene.tools)
+      if (tool.surface) ctx.input(tool.surface->source());
     haptic::HapticScene scene(mesh, config.model, config.options);
     haptic::HapticRecord record;
     if (ctx.mode == "serve") {

@@ -179,6 +179,6 @@ def report(ctx):
         f"{fine['contacts']} nodes in contact; the step was {fmt(fine['dt'])} s against a critical step of "
         f"{fmt(fine['dt_critical'])} s (the projection adds no stiffness: the critical step is the body's own).",
         *haptic_lines(ctx),
-        "- Not done yet: the CalculiX contact comparison (friction exists, `friction`; this frictionless "
-        "comparison does not use it).", ""]
+        "- Friction exists (`friction`); this frictionless comparison does not use it. CalculiX's contact on the same "
+        "meshes: [calculix](calculix.md).", ""]
     ctx.out("summary.md").write_text("\n".join(lines) + "\n")

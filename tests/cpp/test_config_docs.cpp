@@ -174,6 +174,7 @@ json resolved(const hybrid::DhdConfig& c) {
             {"dt_check_interval", e.dt_check_interval},
             {"energy_interval", e.energy_interval},
             {"energy_growth_limit", e.energy_growth_limit},
+            {"contact_search", e.contact_search ? "grid" : "all"},
             {"increments", st.increments},
             {"max_iterations", st.max_iterations},
             {"tolerance", st.tolerance}}},

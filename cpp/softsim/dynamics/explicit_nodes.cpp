@@ -147,7 +147,10 @@ void ExplicitSolver::update_special(int i, int step, const double f[3], const do
         if (probe_free_[k]) probe_work_ += 0.5 * (probe_previous_[k] + probe_force[k]) * (uc[3 * i + k] - up[3 * i + k]);
     probe_previous_ = probe_force;
   }
-  if (contact_begin_[i + 1] > contact_begin_[i]) project_contacts(i, step, t, t + dt, up, uc, un);
+  sample_trajectories(i, step, un);
+}
+
+void ExplicitSolver::sample_trajectories(int i, int step, const double* un) {
   if (trajectories_ && (step + 1) % opt_.trajectory_interval == 0) {
     const int sample = (step + 1) / opt_.trajectory_interval;
     for (int j = trajectory_begin_[i]; j < trajectory_begin_[i + 1]; ++j)

@@ -23,14 +23,13 @@ void ExplicitSolver::build_schedule() {
   }
   pressure_nodes_.assign(T + 1, 0);
   for (int p = 0; p <= T; ++p) pressure_nodes_[p] = static_cast<int>(static_cast<long>(n_) * p / T);
-  // Special nodes: those with constraints, loads, a trajectory, the probe or a rigid tool.
+  // Special nodes: those with constraints, loads, a trajectory or the probe (rigid tools act in
+  // a pass of their own after the update, explicit_contact.cpp).
   std::vector<char> special_node(n_, 0);
   for (const auto& d : dofs_) special_node[d.node] = 1;
   for (const auto& l : loads_) special_node[l.node] = 1;
   for (int node : opt_.trajectory_nodes) special_node[node] = 1;
   if (scene_.has_probe) special_node[scene_.probe.node] = 1;
-  for (int i = 0; i < n_; ++i)
-    if (contact_begin_[i + 1] > contact_begin_[i]) special_node[i] = 1;
   // Each list holds the plain nodes first, then the special ones (from `split` on). Deferred
   // nodes can be updated by any thread once every element is done: they are pooled (in tile
   // order) and each part gets an equal share, so that no thread idles at the end of the step.

@@ -222,6 +222,8 @@ void ExplicitSolver::start() {
   tool_contact_samples_.assign(scene_.tools.size(), {});
   tool_moved_from_.assign(scene_.tools.size(), Eigen::Vector3d::Zero());
   tool_moved_at_.assign(scene_.tools.size(), -1);
+  search_.reset();
+  contact_seconds_ = 0;
   next_event_ = 0;
   n_done_ = 0;
   energies_.clear();
@@ -378,6 +380,14 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
         if (any_bad) {
           if (tid == 0) failed_step = s;
           break;
+        }
+        if (!contact_begin_.empty() && contact_begin_.back() > 0) {  // rigid tools: one thread, then the others wait
+          if (tid == 0) {
+            const auto tc = timed ? Clock::now() : Clock::time_point();
+            contact_pass(s, up, uc, un);
+            if (timed) contact_seconds_ += seconds_since(tc);
+          }
+          barrier();
         }
       }
     });
@@ -602,6 +612,7 @@ ExplicitTiming ExplicitSolver::timing() const {
   }
   for (int k = 0; k < fem::kNumElementKinds; ++k) tm.element_counts[k] = elements_.count(static_cast<fem::ElementKind>(k));
   tm.sample_seconds = sample_seconds_;
+  tm.contact_seconds = scale * contact_seconds_;
   return tm;
 }
 

@@ -25,6 +25,7 @@
 
 #include <Eigen/Core>
 
+#include "softsim/dynamics/contact_search.hpp"
 #include "softsim/dynamics/scene.hpp"
 #include "softsim/fem/element_set.hpp"
 
@@ -60,6 +61,10 @@ struct ExplicitOptions {
   // integrated (their value is the constraint's); false updates them like the others, the
   // reference the skipping is tested and measured against (results equal bit for bit).
   bool skip_held_nodes = true;
+  // Rigid tools: the broad phase finds the nodes near each tool (dynamics/contact_search.hpp);
+  // false tests every node of every tool each step, the reference the search is tested and
+  // measured against (results equal bit for bit).
+  bool contact_search = true;
 };
 
 // What one cut event removed (ExplicitSolver::remove_elements).
@@ -98,6 +103,7 @@ struct ExplicitTiming {
   std::array<int, fem::kNumElementKinds> element_counts{};
   double node_seconds = 0;  // nodal gather and update, summed over threads
   double sample_seconds = 0;  // energy samples, checks and snapshot callbacks
+  double contact_seconds = 0;  // rigid tools: broad and narrow phase (dynamics/explicit_contact.cpp)
 
   // Kernel time of one element of `kind` per step, and node-phase time of one node per step
   // (ns), over a run of `steps` steps; 0 without elements of that kind or without steps.
@@ -232,6 +238,8 @@ class ExplicitSolver {
   // its nodes), and how many of its nodes were in contact then.
   Eigen::Vector3d tool_force(int k) const;
   int tool_contacts(int k) const;
+  // The broad phase's state (how often it searched, how many nodes it lists).
+  const ContactSearch& contact_search() const { return search_; }
 
  private:
   struct LoadEntry {
@@ -271,9 +279,13 @@ class ExplicitSolver {
   StepSegment segment_at(int step) const;
   void fire_due_events();
   void build_contacts(const std::vector<char>& constrained);
-  // After node i's update: moves it out of the tools it entered (see RigidTool) and books the
-  // contact work; `t_next` is the time of un.
-  void project_contacts(int i, int step, double t, double t_next, const double* up, const double* uc, double* un);
+  // After every node's update of step `step`: moves the nodes that entered a tool out of it (see
+  // RigidTool) and books the contact work, for the candidates the broad phase lists.
+  void contact_pass(int step, const double* up, const double* uc, double* un);
+  // Contact entry e of tool `tool` at `centre` (t_next, the time of un); `t`: the time of uc.
+  void project_entry(int e, const RigidTool& tool, const Eigen::Vector3d& centre, int step, double t,
+                     const double* up, const double* uc, double* un);
+  void sample_trajectories(int i, int step, const double* un);
   void record_tool_forces();
   void check_step();
   std::string where(int step) const;
@@ -324,8 +336,11 @@ class ExplicitSolver {
   // force on the node at the last step (3 values) and its work, booked trapezoidally like a load's.
   struct ContactEntry {
     int tool;
+    int node;
     Eigen::Vector3d position;  // the node's reference position X
   };
+  ContactSearch search_;
+  double contact_seconds_ = 0;
   std::vector<int> contact_begin_;
   std::vector<ContactEntry> contacts_;
   std::vector<double> contact_force_, contact_work_;

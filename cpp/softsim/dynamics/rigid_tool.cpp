@@ -1,4 +1,4 @@
-// Geometry of the rigid tools (scene.hpp): signed distance and outward normal.
+// Geometry of the rigid tools (scene.hpp): signed distance and outward normal, bounding box.
 #include <algorithm>
 
 #include "softsim/dynamics/scene.hpp"
@@ -30,8 +30,31 @@ double RigidTool::signed_distance(const Eigen::Vector3d& x, const Eigen::Vector3
     case Shape::plane:
       n = normal;
       return (x - c).dot(normal);
+    case Shape::mesh:
+      return surface->signed_distance(x - c, n);
   }
   return 0.0;
+}
+
+bool RigidTool::bounds(const Eigen::Vector3d& c, Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
+  const Eigen::Vector3d r = Eigen::Vector3d::Constant(radius);
+  switch (shape) {
+    case Shape::sphere:
+      lo = c - r;
+      hi = c + r;
+      return true;
+    case Shape::capsule:
+      lo = c - half_axis.cwiseAbs() - r;
+      hi = c + half_axis.cwiseAbs() + r;
+      return true;
+    case Shape::plane:
+      return false;
+    case Shape::mesh:
+      lo = c + surface->lower();
+      hi = c + surface->upper();
+      return true;
+  }
+  return false;
 }
 
 }  // namespace softsim::dynamics

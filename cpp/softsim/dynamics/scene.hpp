@@ -4,10 +4,13 @@
 // spring (000 eq. 26's R_v, plus the haptic probe of paper 001). Node lists are already
 // resolved (see node_selection.hpp); everything is SI.
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "softsim/mesh/closed_surface.hpp"
 
 namespace softsim::dynamics {
 
@@ -49,7 +52,7 @@ struct ProbeSpring {
 };
 
 // A rigid tool in frictionless contact with the body (issue 23): a sphere, a capsule (a probe,
-// or a blade's back) or a plane, moved rigidly by `travel` × ramp(t) from where it starts, or
+// or a blade's back), a plane or a closed triangle mesh (any instrument), moved rigidly by `travel` × ramp(t) from where it starts, or
 // set between steps (the haptic loop's probe position). Contact is kinematic: after each
 // central-difference step a listed node that lies inside the tool is moved to the tool's surface
 // along the normal (the projection an explicit TLED code such as NiftySim applies), and the
@@ -59,7 +62,7 @@ struct ProbeSpring {
 // well (stick) unless the force that takes exceeds μ times the normal force, when it is capped
 // there (slip): Coulomb friction in the same kinematic form.
 struct RigidTool {
-  enum class Shape { sphere, capsule, plane };
+  enum class Shape { sphere, capsule, plane, mesh };
   std::string name;
   Shape shape = Shape::sphere;
   double radius = 0;                                   // sphere, capsule (m)
@@ -71,11 +74,19 @@ struct RigidTool {
   double friction = 0;                        // Coulomb coefficient μ (0: frictionless)
   std::vector<int> nodes;                     // the nodes it can touch (a surface), ascending
   std::vector<Eigen::Vector3d> positions;     // their reference positions X (m)
+  // mesh: a closed triangle surface in the tool's frame, placed at centre(t) (an instrument of
+  // any shape; mesh/closed_surface.hpp). Shared: copies of a scene share one surface.
+  std::shared_ptr<const mesh::ClosedSurface> surface;
+  // Broad phase (dynamics/contact_search.hpp): how far nodes and the tool may move before the
+  // candidate nodes are searched again (m); 0: a quarter of the tool's size.
+  double search_margin = 0;
 
   Eigen::Vector3d centre(double t) const { return start + ramp.at(t) * travel; }
   // Signed distance of x from the surface of the tool at `centre` (negative inside), and the
   // unit normal pointing out of the tool at the nearest surface point.
   double signed_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& centre, Eigen::Vector3d& normal) const;
+  // The tool's bounding box at `centre`; false for a plane (unbounded).
+  bool bounds(const Eigen::Vector3d& centre, Eigen::Vector3d& lo, Eigen::Vector3d& hi) const;
 };
 
 struct Scene {

@@ -29,6 +29,9 @@ struct ExplicitConfig {
   // With the automatic step (no dt): steps between re-estimates of the critical step on the
   // deformed mesh (0: never, the step of the undeformed mesh throughout).
   int dt_check_interval = 10;
+  // Rigid tools: "grid" (the broad phase, dynamics/contact_search.hpp) or "all" (every node each
+  // step; the same results, slower).
+  bool contact_search = true;
 };
 
 struct OutputConfig {

@@ -182,7 +182,7 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
   if (!c.scene.tools.empty()) {
     // The force on each rigid tool at the energy samples' times (what a haptic device renders).
     nlohmann::json tools = nlohmann::json::array();
-    static constexpr const char* kShape[] = {"sphere", "capsule", "plane"};
+    static constexpr const char* kShape[] = {"sphere", "capsule", "plane", "mesh"};
     for (std::size_t k = 0; k < c.scene.tools.size(); ++k) {
       nlohmann::json force = nlohmann::json::array();
       for (const auto& f : r.tool_force[k]) force.push_back(vec3(f));
@@ -192,6 +192,8 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                        {"time", en["time"]},
                        {"force", force},
                        {"contacts", r.tool_contacts[k]}});
+      if (const auto& s = c.scene.tools[k].surface)
+        tools.back()["surface"] = {{"triangles", s->num_triangles()}, {"volume", s->volume()}};
     }
     p["tools"] = tools;
   }
@@ -241,7 +243,8 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                  {"setup_seconds", run.setup_seconds},
                  {"sample_seconds", r.timing.sample_seconds},
                  {"ns_per_element", ns},
-                 {"node_phase_ns_per_node", r.timing.ns_per_node(mesh.num_nodes(), r.steps)}};
+                 {"node_phase_ns_per_node", r.timing.ns_per_node(mesh.num_nodes(), r.steps)},
+                 {"contact_seconds", r.timing.contact_seconds}};
   return p;
 }
 

@@ -16,6 +16,7 @@ dynamics::ExplicitOptions explicit_options(const DhdConfig& c, double dt) {
   o.threads = c.threads;
   o.energy_interval = c.explicit_solver.energy_interval;
   o.energy_growth_limit = c.explicit_solver.energy_growth_limit;
+  o.contact_search = c.explicit_solver.contact_search;
   o.trajectory_nodes = c.output.trajectory_nodes;
   o.trajectory_interval = c.output.trajectory_interval;
   o.snapshot_interval = c.output.vtu_interval;

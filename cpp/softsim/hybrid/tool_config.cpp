@@ -1,11 +1,44 @@
 #include "softsim/hybrid/tool_config.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
 
 #include "softsim/hybrid/dhd_config.hpp"
+#include "softsim/io/errors.hpp"
+#include "softsim/io/surface_files.hpp"
 #include "softsim/mesh/surface.hpp"
 
 namespace softsim::hybrid {
+
+namespace {
+
+// A mesh tool's "file" (× "scale", file units to metres, then turned by "rotation" about the
+// frame's origin) as a closed surface; a bad file is bad input at /.../file, one line naming the
+// config, the member and what is wrong with the file.
+std::shared_ptr<const mesh::ClosedSurface> read_tool_surface(const io::JsonReader& t) {
+  const std::string path = t.get_input_path("file");
+  const double scale = t.get_positive("scale", 1.0);
+  Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
+  if (auto r = t.optional("rotation")) {
+    const Eigen::Vector3d axis = read_vec3(*r, "axis");
+    r->require(axis.norm() > 0, "axis", "a non-zero rotation axis");
+    const double degrees = r->get_double("degrees");
+    r->require(std::isfinite(degrees), "degrees", "a finite angle in degrees");
+    r->reject_unknown();
+    turn = Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+  }
+  try {
+    mesh::TriangleSurface s = io::read_surface_file(path, scale);
+    for (auto& v : s.vertices) v = turn * v;
+    return std::make_shared<const mesh::ClosedSurface>(std::move(s), path);
+  } catch (const InputError& e) {
+    throw InputError(t.file() + ": " + t.at("file").pointer() + ": " + e.what());
+  }
+}
+
+}  // namespace
 
 std::vector<dynamics::RigidTool> read_tools(const io::JsonReader& boundary, const mesh::TetMesh& mesh) {
   std::vector<dynamics::RigidTool> tools;
@@ -15,9 +48,12 @@ std::vector<dynamics::RigidTool> read_tools(const io::JsonReader& boundary, cons
   for (std::size_t i = 0; i < list->size(); ++i) {
     const io::JsonReader t = (*list)[i];
     dynamics::RigidTool tool;
-    const std::string shape = t.get_choice("shape", {"sphere", "capsule", "plane"});
+    const std::string shape = t.get_choice("shape", {"sphere", "capsule", "plane", "mesh"});
     tool.name = t.get_string("name", shape + "[" + std::to_string(i) + "]");
-    if (shape == "plane") {
+    if (shape == "mesh") {
+      tool.shape = dynamics::RigidTool::Shape::mesh;
+      tool.surface = read_tool_surface(t);
+    } else if (shape == "plane") {
       tool.shape = dynamics::RigidTool::Shape::plane;
       const Eigen::Vector3d n = read_vec3(t, "normal");
       t.require(n.norm() > 0, "normal", "a non-zero normal (pointing out of the tool, into the body)");
@@ -34,6 +70,7 @@ std::vector<dynamics::RigidTool> read_tools(const io::JsonReader& boundary, cons
     tool.start = read_vec3(t, "position");
     tool.travel = t.has("travel") ? read_vec3(t, "travel") : Eigen::Vector3d::Zero();
     tool.ramp = read_ramp(t);
+    if (t.has("search_margin")) tool.search_margin = t.get_positive("search_margin");
     tool.friction = t.get_double("friction", tool.friction);
     t.require(tool.friction >= 0, "friction", "a Coulomb friction coefficient >= 0");
     if (t.has("nodes")) {

@@ -9,6 +9,12 @@
 // nodes of node set `nodes` (default: every node of the mesh's boundary surface); nodes with a
 // constrained component are left to their constraint. Frictionless kinematic contact
 // (dynamics::RigidTool); explicit runs only.
+// shape "mesh": "file" (a closed triangle surface, .stl ASCII or binary, or .obj; relative to the
+// config's folder) with "scale" (file units to metres, default 1); its file coordinates are the
+// tool's frame (turned by "rotation": {"axis": [x, y, z], "degrees": a} about its origin if given),
+// placed at `position` (the frame's origin) and moved like the others.
+// "search_margin" (m): the broad phase's margin (dynamics/contact_search.hpp; default a quarter
+// of the tool's size).
 #include <vector>
 
 #include "softsim/dynamics/scene.hpp"
