@@ -123,7 +123,8 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
   material::Ogden ogden;
   if (auto m = cfg.optional("material")) {
     c.model_defaulted = !m->has("model");
-    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden", "linear"},
+    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden",
+                                              "stable_neo_hookean", "linear"},
                              c.model);
     if (c.model == "mooney_rivlin") {
       mooney_rivlin.c10 = m->get_double("C10");
@@ -157,6 +158,8 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
     c.material = fem::Material::make(p, mooney_rivlin);
   else if (c.model == "ogden")
     c.material = fem::Material::make(p, ogden);
+  else if (c.model == "stable_neo_hookean")  // (E, ν) through Smith et al.'s reparametrisation
+    c.material = fem::Material::make(p, material::StableNeoHookean::from(p));
   else
     c.material = fem::Material::make(p, c.model == "neo_hookean_decoupled" ? material::NeoHookeanForm::decoupled
                                                                            : material::NeoHookeanForm::paper);

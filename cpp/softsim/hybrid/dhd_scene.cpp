@@ -38,10 +38,13 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
                                        config_.explicit_solver.force_dt);
     elements_ = std::make_unique<fem::ElementSet>(*mesh_, kinds_, config_.material);
     // The critical step of the deformed mesh: TLED and ANP stiffness follows the deformation,
-    // small-strain and corotational stiffness does not.
+    // small-strain and corotational stiffness does not. Nor does an inversion-robust law's in the
+    // sense of 000 eq. 34: its tangent on the reference gradients stays bounded as an element
+    // flattens (no 1/J), while the deformed altitude goes to zero and would stop the run there.
     std::vector<char> follows(kinds_.size());
     for (std::size_t e = 0; e < kinds_.size(); ++e)
-      follows[e] = kinds_[e] == fem::ElementKind::tled || kinds_[e] == fem::ElementKind::anp;
+      follows[e] = (kinds_[e] == fem::ElementKind::tled || kinds_[e] == fem::ElementKind::anp) &&
+                   !elements_->inversion_allowed(kinds_[e]);
     deformed_step_ =
         std::make_unique<dynamics::DeformedCriticalStep>(*mesh_, std::move(follows), config_.material.elastic);
     dynamics::ExplicitOptions options = explicit_options(config_, step_.dt);
