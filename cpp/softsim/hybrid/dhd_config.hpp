@@ -19,6 +19,11 @@
 
 namespace softsim::hybrid {
 
+// How Δt_cr is found: 000 eq. 34 on the smallest altitude (stable_step.hpp), or the lumped
+// system's largest eigenvalue by power iteration (spectral_step.hpp).
+enum class CriticalStepMethod { altitude, power_iteration };
+const char* critical_step_name(CriticalStepMethod m);
+
 struct ExplicitConfig {
   int steps = 1000;
   std::optional<double> dt;
@@ -29,6 +34,7 @@ struct ExplicitConfig {
   // With the automatic step (no dt): steps between re-estimates of the critical step on the
   // deformed mesh (0: never, the step of the undeformed mesh throughout).
   int dt_check_interval = 10;
+  CriticalStepMethod critical_step = CriticalStepMethod::altitude;
 };
 
 struct OutputConfig {
