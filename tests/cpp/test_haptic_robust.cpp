@@ -41,9 +41,12 @@ haptic::ProbePath deep_press() {
   return path;
 }
 
-haptic::HapticOptions stiff_spring() {
+// The experiments' 100 N/m: stiff enough to drag the surface through the block, soft enough for
+// the spring's once-per-frame coupling to stay stable (k Δt_frame² / m well below 4 for a surface
+// node of this block).
+haptic::HapticOptions spring() {
   haptic::HapticOptions opt;
-  opt.probe_stiffness = 1e4;
+  opt.probe_stiffness = 100;
   return opt;
 }
 
@@ -61,7 +64,7 @@ int inverted_elements(const mesh::TetMesh& m, const double* u) {
 
 TEST(HapticRobust, TheStableNeoHookeanSceneRunsPastInversionWithoutEvents) {
   const auto mesh = block();
-  haptic::HapticScene scene(mesh, config(*mesh, "stable_neo_hookean"), stiff_spring());
+  haptic::HapticScene scene(mesh, config(*mesh, "stable_neo_hookean"), spring());
   const haptic::ProbePath path = deep_press();
   int most_inverted = 0;
   double largest = 0;
@@ -71,7 +74,7 @@ TEST(HapticRobust, TheStableNeoHookeanSceneRunsPastInversionWithoutEvents) {
     largest = std::max(largest, f.norm());
     most_inverted = std::max(most_inverted, inverted_elements(*mesh, scene.model().displacement()));
   }
-  EXPECT_TRUE(scene.events().empty()) << scene.events().front().message;
+  for (const auto& e : scene.events()) ADD_FAILURE() << "frame " << e.frame << ": " << e.message;
   EXPECT_GT(most_inverted, 0);  // the press did go past inversion
   EXPECT_TRUE(scene.in_contact());
   // The device feels the tissue resist: a force against the press, growing with depth.
@@ -80,9 +83,10 @@ TEST(HapticRobust, TheStableNeoHookeanSceneRunsPastInversionWithoutEvents) {
 
 TEST(HapticRobust, TheSamePressWithTheNeoHookeanLawIsReportedAndTheFramesGoOn) {
   const auto mesh = block();
-  haptic::HapticScene scene(mesh, config(*mesh, "neo_hookean_paper"), stiff_spring());
+  haptic::HapticScene scene(mesh, config(*mesh, "neo_hookean_paper"), spring());
   const haptic::HapticRecord r = haptic::run_haptic(scene, deep_press(), 400);
   EXPECT_EQ(r.frames, 400);
   ASSERT_FALSE(scene.events().empty());
+  EXPECT_NE(scene.events().front().message.find("inverted"), std::string::npos) << scene.events().front().message;
   for (const auto& f : r.force) EXPECT_TRUE(f.allFinite());
 }
