@@ -30,8 +30,8 @@ def report(ctx):
                 "Distorted versions of the regular block (perturbation a: interior nodes moved by up to a × the cell "
                 "edge; sliver s: one node moved a share s towards the opposite face of one of its tets) and the liver "
                 "meshes as read. Δt_cr is dhd_sim's (000 eq. 34 with the smallest altitude); 2/ω_max the exact linear "
-                "limit (dense, linear elements); power iteration is dhd_sim's `solver.critical_step` "power_iteration" (relative residual 1e-3: "
-                "within 1e-3 of the exact limit, at most 0.05 % below it), and its explicit run uses 0.9 × that limit; "
+                "limit (dense, linear elements); power iteration is dhd_sim's `solver.critical_step` \"power_iteration\" (relative residual "
+                "1e-3: within 1e-3 of the exact limit), and its explicit run uses 0.9 × that limit; "
                 "the shear columns are the relative error of the static shear stiffness against the regular "
                 "mesh of the same resolution and against the twice finer regular mesh.")
     fig, (ax1, ax2) = plots.plt.subplots(1, 2, figsize=(10, 3.8), dpi=110)

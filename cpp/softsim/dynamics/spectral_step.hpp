@@ -13,8 +13,9 @@
 // true limit. Some eigenvalue lies within the residual of ρ; when the top one is isolated
 // (a sliver's mode) that is λ_max, so λ ≥ λ_max and Δt_cr is not above the limit. When the top
 // eigenvalues cluster closer than the residual (a regular mesh), ρ can settle among them and
-// Δt_cr exceed the limit, by less than the tolerance (tests/cpp/test_spectral_step.cpp: at most
-// 5e-6 relative at tolerance 1e-4 on a regular block). The step used is solver.safety_factor ×
+// Δt_cr exceed the limit, by less than the tolerance in practice (tests/cpp/test_spectral_step.cpp:
+// 5e-6 relative at tolerance 1e-4 on a regular block; results/stability/quality.md: at most 8e-4
+// at the default 1e-3). The step used is solver.safety_factor ×
 // Δt_cr (0.9 by default) as for the altitude estimate: that factor is the safety margin.
 //
 // K is assembled once at the given state (fem::Assembler: every element kind, ANP's nodal
