@@ -41,6 +41,9 @@ def report(ctx):
                      label=f"{case}: Δt_cr (000 eq. 34)")
         ax1.semilogy([r["min_dihedral_deg"] for r in rs], [r["dt_exact_linear"] / regular["dt_critical"] for r in rs],
                      marker.replace("-", "--"), label=f"{case}: exact 2/ω_max")
+        pi = [r for r in rs if r.get("dt_power_iteration")]
+        ax1.semilogy([r["min_dihedral_deg"] for r in pi], [r["dt_power_iteration"] / regular["dt_critical"] for r in pi],
+                     "x", ms=7, label=f"{case}: power iteration (dhd_sim)")
         ax2.plot([r["min_dihedral_deg"] for r in rs if r.get("error_vs_fine") is not None],
                  [100 * r["error_vs_fine"] for r in rs if r.get("error_vs_fine") is not None], marker, label=case)
     ax1.set_xlabel("smallest dihedral angle (°)")
