@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "softsim/fem/kernel_macros.hpp"
+#include "softsim/fem/stable_kernels.hpp"
 
 namespace softsim::fem::kernels {
 
@@ -61,6 +62,7 @@ void tled_forces(const material::HyperelasticLaw& law, const SoaView s, const do
                           else
                             tled_decoupled_kernel(s, u, begin, end, nh.mu, nh.bulk, scratch, min_j);
                         },
+                        [&](const material::StableNeoHookean& sn) { tled_stable_kernel(s, u, begin, end, sn); },
                         [&](const auto& other) {
                           using Law = std::decay_t<decltype(other)>;
                           hyperelastic_kernel<Law, false>(s, u, begin, end, other, nullptr, min_j);
@@ -76,6 +78,7 @@ void anp_forces(const material::HyperelasticLaw& isochoric, const SoaView s, con
                           else
                             anp_decoupled_kernel(s, u, begin, end, nh.mu, pressure, scratch, min_j);
                         },
+                        [&](const material::StableNeoHookean& sn) { anp_stable_kernel(s, u, begin, end, sn, pressure); },
                         [&](const auto& other) {
                           using Law = std::decay_t<decltype(other)>;
                           hyperelastic_kernel<Law, true>(s, u, begin, end, other, pressure, min_j);

@@ -38,9 +38,9 @@
 // each step) or with a direction (anisotropy: a fibre direction per element) needs that state
 // stored per element slot and passed beside F; Ogden-type laws written in principal stretches
 // fit the interface as it is (P and dP from the eigen-decomposition of C: ogden.hpp). The
-// neo-Hookean law keeps its hand-written vectorised kernels
-// (fem/element_kernels.hpp); any other law runs the generic kernel, vectorised as far as its
-// first_piola allows.
+// neo-Hookean law keeps its hand-written vectorised kernels (fem/element_kernels.hpp), the stable
+// neo-Hookean law its own (fem/stable_kernels.hpp); any other law runs the generic kernel,
+// vectorised as far as its first_piola allows.
 #include <string>
 #include <variant>
 
