@@ -11,8 +11,9 @@
 // Failure detection: an inverted TLED, ANP or corotational element (J ≤ 0) is caught in the step
 // it happens, except the TLED and ANP elements of an inversion-robust law (stable neo-Hookean:
 // ElementSet::inversion_allowed), for which inversion is a state like any other; a non-finite
-// displacement in the step it appears; an inverted linear element and energy growth (kinetic + strain energy above `energy_growth_limit` × (initial energy +
-// external work)) at every energy sample. Each throws NumericalError naming the step, the
+// displacement in the step it appears; an inverted linear element and energy growth (kinetic +
+// strain energy above `energy_growth_limit` × (initial energy + external work)) at every energy
+// sample. Each throws NumericalError naming the step, the
 // quantity and the limit; with a known critical step (ExplicitOptions::critical_step) one whose
 // step exceeds the critical step of the last sound state says it is a step-size failure.
 //
