@@ -13,9 +13,9 @@
 // ElementSet::inversion_allowed), for which inversion is a state like any other; a non-finite
 // displacement in the step it appears; an inverted linear element and energy growth (kinetic +
 // strain energy above `energy_growth_limit` × (initial energy + external work)) at every energy
-// sample. Each throws NumericalError naming the step, the
-// quantity and the limit; with a known critical step (ExplicitOptions::critical_step) one whose
-// step exceeds the critical step of the last sound state says it is a step-size failure.
+// sample. Each throws NumericalError naming the step, the quantity and the limit; with a known
+// critical step (ExplicitOptions::critical_step) one whose step exceeds the critical step of the
+// last sound state says it is a step-size failure.
 //
 // Variable step: with `adapt_step` the step is re-estimated on the deformed mesh and shrinks
 // when needed (see ExplicitOptions); the step change is the variable-step central difference
