@@ -10,8 +10,9 @@ elements do to the explicit step and to accuracy:
   face of one of its tets, s → 1 (a single flat element in an otherwise perfect mesh).
 
 Per mesh: smallest dihedral angle and altitude, the paper's Δt_cr = h_min/c (000 eqs. 34–35,
-as dhd_sim reports it), the exact limit 2/ω_max (stability_fem), the measured outcome of a run
-at the automatic step, and the accuracy of a static shear test (bottom clamped, top face moved
+as dhd_sim reports it), the exact limit 2/ω_max (stability_fem), dhd_sim's power-iteration
+limit (solver.critical_step "power_iteration"), the measured outcome of a run at each automatic
+step, and the accuracy of a static shear test (bottom clamped, top face moved
 sideways by `shear` × height): the total reaction force against the regular mesh and against a
 twice finer regular mesh.
 
@@ -113,6 +114,17 @@ def measure(name, payload, path, cfg, kind_of_case, parameter, height=None, refe
     row["explicit"] = run.as_json()
     if run.ok:
         row["dt_critical"] = run.payload["solver"]["dt_critical"]
+    # The same run with the step from the largest eigenvalue (solver.critical_step
+    # "power_iteration"): its limit beside the altitude estimate, and whether the run holds at
+    # 0.9 × that limit.
+    spectral = run_tool("dhd_sim", {"mesh": path, "material": mat, "boundary": boundary,
+                                    "solver": {"kind": "explicit", "steps": cfg["explicit_steps"],
+                                               "critical_step": "power_iteration"}})
+    row["explicit_power_iteration"] = spectral.as_json()
+    if spectral.ok:
+        pi = spectral.payload["solver"]["dt_critical_power_iteration"]
+        row["dt_power_iteration"] = pi["dt"]
+        row["power_iteration"] = pi
     if row["min_volume"] > 0:
         omega = fem.max_frequency(X, T, mat["E"], mat["nu"], mat["density"], bottom)
         row["dt_exact_linear"] = 2.0 / omega

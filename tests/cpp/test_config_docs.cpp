@@ -172,6 +172,7 @@ json resolved(const hybrid::DhdConfig& c) {
             {"safety_factor", e.safety_factor},
             {"force_dt", e.force_dt},
             {"dt_check_interval", e.dt_check_interval},
+            {"critical_step", hybrid::critical_step_name(e.critical_step)},
             {"energy_interval", e.energy_interval},
             {"energy_growth_limit", e.energy_growth_limit},
             {"contact_search", e.contact_search ? "grid" : "all"},

@@ -8,12 +8,14 @@
 // results bit-identical for any thread count. With ANP elements, a pre-pass (two more barriers)
 // computes their nodal pressures first.
 //
-// Failure detection: an inverted TLED or corotational element (J ≤ 0) is caught in the step it
-// happens; a non-finite displacement in the step it appears; an inverted linear element and
-// energy growth (kinetic + strain energy above `energy_growth_limit` × (initial energy +
-// external work)) at every energy sample. Each throws NumericalError naming the step, the
-// quantity and the limit; with a known critical step (ExplicitOptions::critical_step) one whose
-// step exceeds the critical step of the last sound state says it is a step-size failure.
+// Failure detection: an inverted TLED, ANP or corotational element (J ≤ 0) is caught in the step
+// it happens, except the TLED and ANP elements of an inversion-robust law (stable neo-Hookean:
+// ElementSet::inversion_allowed), for which inversion is a state like any other; a non-finite
+// displacement in the step it appears; an inverted linear element and energy growth (kinetic +
+// strain energy above `energy_growth_limit` × (initial energy + external work)) at every energy
+// sample. Each throws NumericalError naming the step, the quantity and the limit; with a known
+// critical step (ExplicitOptions::critical_step) one whose step exceeds the critical step of the
+// last sound state says it is a step-size failure.
 //
 // Variable step: with `adapt_step` the step is re-estimated on the deformed mesh and shrinks
 // when needed (see ExplicitOptions); the step change is the variable-step central difference

@@ -42,7 +42,10 @@ double ElementSet::relative_cost(ElementKind kind) {
 
 ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds,
                        const Material& material, int tile_nodes, LinearForces linear_forces)
-    : num_nodes_(mesh.num_nodes()), material_(material), kinds_(kinds) {
+    : num_nodes_(mesh.num_nodes()),
+      material_(material),
+      inversion_robust_(material::inversion_robust(material.law)),
+      kinds_(kinds) {
   if (static_cast<int>(kinds.size()) != mesh.num_tets())
     throw std::invalid_argument("ElementSet: one kind per element is required");
   // An element's tile key: its highest node index. Inside a group elements are sorted by it, so
@@ -167,7 +170,10 @@ void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& s
   for (int gi = 0; gi < G; ++gi) {
     if (groups_[gi].kind != ElementKind::anp) continue;
     const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
-    if (b < e) kernels::volume_ratio_kernel(view(), u, b, e, volume_ratio_.data(), stats.min_j);
+    // An inversion-robust law's ANP elements may invert: their J is no failure (min_j untouched).
+    double unchecked = 1e300;
+    double& min_j = inversion_allowed(ElementKind::anp) ? unchecked : stats.min_j;
+    if (b < e) kernels::volume_ratio_kernel(view(), u, b, e, volume_ratio_.data(), min_j);
   }
 }
 
@@ -366,11 +372,13 @@ void ElementSet::energies(const double* u, int begin, int end, double* energy, d
     const Corners c = corners(i, u);
     const double J = fem::volume_ratio(sh, c);
     volume_ratio[i] = J;
-    if (J < min_j) {
+    const bool may_invert = inversion_allowed(kinds_[e]);
+    if (J < min_j && !may_invert) {
       min_j = J;
       min_j_element = e;
     }
-    energy[i] = J > 0 || kinds_[e] == ElementKind::linear ? element_energy(material_, kinds_[e], sh, c) : 0.0;
+    energy[i] = J > 0 || may_invert || kinds_[e] == ElementKind::linear ? element_energy(material_, kinds_[e], sh, c)
+                                                                          : 0.0;
   }
 }
 

@@ -62,6 +62,12 @@ class ElementSet {
   const std::vector<Group>& groups() const { return groups_; }
   int count(ElementKind kind) const;
   const Material& material() const { return material_; }
+  // Whether an element of `kind` may invert without that being a failure: TLED and ANP elements
+  // of an inversion-robust law (material/inversion_robust.hpp). Their J is left out of
+  // KernelStats::min_j and of the smallest J of energies(), and they get forces and energy at J ≤ 0.
+  bool inversion_allowed(ElementKind kind) const {
+    return inversion_robust_ && (kind == ElementKind::tled || kind == ElementKind::anp);
+  }
 
   // Element phase over the whole set, in one thread: the ANP pre-pass, the assembled linear
   // rows and the corner forces of every element into the buffer, after which gather() gives
@@ -169,6 +175,7 @@ class ElementSet {
   int num_nodes_ = 0;
   int stride_ = 0;  // padded element count: component c of slot i lives at buffer[c * stride + i]
   Material material_;
+  bool inversion_robust_ = false;  // material::inversion_robust(material_.law)
   std::vector<ElementKind> kinds_;  // per original element
   std::vector<int> original_;       // internal slot -> original element (−1: padding)
   std::vector<int> slot_of_;        // original element -> internal slot

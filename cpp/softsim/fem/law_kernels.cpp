@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "softsim/fem/kernel_macros.hpp"
+#include "softsim/fem/stable_kernels.hpp"
 
 namespace softsim::fem::kernels {
 
@@ -14,17 +15,20 @@ namespace {
 // The generic finite-strain kernel: P(F) from the law (an inline function of Law, so the
 // compiler sees the whole element), ANP's averaged pressure added as p̄ cof F (cof F = J F⁻ᵀ).
 // An inverted element (J ≤ 0) gets zero forces, as the corotational kernel's exact path does;
-// the caller's min_j reports it.
+// the caller's min_j reports it. A law defined at J ≤ 0 (material::kInversionRobust, decided at
+// compile time: the other laws' loops are unchanged) gets its forces there and leaves min_j
+// alone, since its inverted elements are no failure.
 template <class Law, bool kAveraged>
 void hyperelastic_kernel(const SoaView s, const double* __restrict u, int begin, int end, const Law& law,
                          const double* __restrict pressure, double& min_j) {
+  constexpr bool kRobust = material::kInversionRobust<Law>;
   double jmin = min_j;
   for (int k = begin; k < end; ++k) {
     SOFTSIM_LOAD_H(s, u, k)
     SOFTSIM_F_AND_COFACTOR
-    jmin = std::min(jmin, J);
+    if constexpr (!kRobust) jmin = std::min(jmin, J);
     Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
-    if (J > 0) {
+    if (kRobust || J > 0) {
       Eigen::Matrix3d F;
       F << f00, f01, f02, f10, f11, f12, f20, f21, f22;
       P = material::first_piola(law, F);
@@ -58,6 +62,7 @@ void tled_forces(const material::HyperelasticLaw& law, const SoaView s, const do
                           else
                             tled_decoupled_kernel(s, u, begin, end, nh.mu, nh.bulk, scratch, min_j);
                         },
+                        [&](const material::StableNeoHookean& sn) { tled_stable_kernel(s, u, begin, end, sn); },
                         [&](const auto& other) {
                           using Law = std::decay_t<decltype(other)>;
                           hyperelastic_kernel<Law, false>(s, u, begin, end, other, nullptr, min_j);
@@ -73,6 +78,7 @@ void anp_forces(const material::HyperelasticLaw& isochoric, const SoaView s, con
                           else
                             anp_decoupled_kernel(s, u, begin, end, nh.mu, pressure, scratch, min_j);
                         },
+                        [&](const material::StableNeoHookean& sn) { anp_stable_kernel(s, u, begin, end, sn, pressure); },
                         [&](const auto& other) {
                           using Law = std::decay_t<decltype(other)>;
                           hyperelastic_kernel<Law, true>(s, u, begin, end, other, pressure, min_j);

@@ -21,7 +21,8 @@ Eigen::Vector3d closest_weights(const Eigen::Vector3d& p, const Eigen::Vector3d&
   const double d3 = ab.dot(bp), d4 = ac.dot(bp);
   if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+  // d1 = d3 = 0: a and b coincide (a triangle collapsed by an inverted element), vertex a's.
+  if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) {
     const double v = d1 / (d1 - d3);
     return {1 - v, v, 0};
   }
@@ -29,14 +30,21 @@ Eigen::Vector3d closest_weights(const Eigen::Vector3d& p, const Eigen::Vector3d&
   const double d5 = ab.dot(cp), d6 = ac.dot(cp);
   if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+  if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) {
     const double w = d2 / (d2 - d6);
     return {1 - w, 0, w};
   }
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0) {
     const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     return {0, 1 - w, w};
+  }
+  // A triangle flattened to a segment or a point (possible once elements may invert) has no
+  // face region: the nearest of its vertices stands in for it.
+  if (!(va + vb + vc > 0)) {
+    const double da = ap.squaredNorm(), db = bp.squaredNorm(), dc = cp.squaredNorm();
+    if (da <= db && da <= dc) return {1, 0, 0};
+    return db <= dc ? Eigen::Vector3d(0, 1, 0) : Eigen::Vector3d(0, 0, 1);
   }
   const double denom = 1.0 / (va + vb + vc);
   const double v = vb * denom, w = vc * denom;

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 
+#include "softsim/dynamics/spectral_step.hpp"
 #include "softsim/dynamics/stable_step.hpp"
+#include "softsim/hybrid/partition.hpp"
 #include "softsim/io/errors.hpp"
 
 namespace softsim::haptic {
@@ -27,7 +29,9 @@ hybrid::DhdConfig with_frame_step(hybrid::DhdConfig c, const mesh::TetMesh& mesh
   if (c.explicit_solver.dt) {
     limit = *c.explicit_solver.dt;
   } else {
-    const auto critical = dynamics::critical_time_step(mesh, c.material.elastic);
+    auto critical = dynamics::critical_time_step(mesh, c.material.elastic);
+    if (c.explicit_solver.critical_step == hybrid::CriticalStepMethod::power_iteration)  // 2/ω_max at rest
+      critical.dt = dynamics::power_iteration_step(mesh, hybrid::make_partition(mesh, c.partition), c.material, c.scene).dt;
     limit = dynamics::choose_time_step(critical, std::nullopt, c.explicit_solver.safety_factor, false).dt;
   }
   c.explicit_solver.dt = frame_substeps(frame_step, limit).dt;

@@ -13,6 +13,10 @@
 
 namespace softsim::hybrid {
 
+const char* critical_step_name(CriticalStepMethod m) {
+  return m == CriticalStepMethod::power_iteration ? "power_iteration" : "altitude";
+}
+
 Eigen::Vector3d read_vec3(const io::JsonReader& r, const std::string& key) {
   const auto v = r.get_doubles(key, 3);
   return Eigen::Vector3d(v[0], v[1], v[2]);
@@ -123,7 +127,8 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
   material::Ogden ogden;
   if (auto m = cfg.optional("material")) {
     c.model_defaulted = !m->has("model");
-    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden", "linear"},
+    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden",
+                                              "stable_neo_hookean", "linear"},
                              c.model);
     if (c.model == "mooney_rivlin") {
       mooney_rivlin.c10 = m->get_double("C10");
@@ -157,6 +162,8 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
     c.material = fem::Material::make(p, mooney_rivlin);
   else if (c.model == "ogden")
     c.material = fem::Material::make(p, ogden);
+  else if (c.model == "stable_neo_hookean")  // (E, ν) through Smith et al.'s reparametrisation
+    c.material = fem::Material::make(p, material::StableNeoHookean::from(p));
   else
     c.material = fem::Material::make(p, c.model == "neo_hookean_decoupled" ? material::NeoHookeanForm::decoupled
                                                                            : material::NeoHookeanForm::paper);
@@ -330,7 +337,7 @@ void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   c.static_solver = s->get_choice("kind", {"explicit", "static"}, c.static_solver ? "static" : "explicit") == "static";
   // Keys of the other solver kind are refused rather than silently ignored.
   const std::set<std::string> explicit_keys = {"steps", "dt", "safety_factor", "force_dt", "energy_interval",
-                                               "energy_growth_limit", "dt_check_interval", "contact_search"};
+                                               "energy_growth_limit", "dt_check_interval", "contact_search", "critical_step"};
   const std::set<std::string> static_keys = {"increments", "max_iterations", "tolerance"};
   for (const auto& key : s->keys())
     if ((c.static_solver && explicit_keys.count(key)) || (!c.static_solver && static_keys.count(key)))
@@ -350,6 +357,10 @@ void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   s->require(e.dt_check_interval >= 0, "dt_check_interval", "a non-negative step count (0: no re-estimate)");
   if (e.dt && s->has("dt_check_interval") && e.dt_check_interval > 0)
     s->at("dt_check_interval").fail("no step re-estimate with a fixed \"dt\" (leave dt out for the automatic step)");
+  e.critical_step = s->get_choice("critical_step", {"altitude", "power_iteration"},
+                                  critical_step_name(e.critical_step)) == "power_iteration"
+                        ? CriticalStepMethod::power_iteration
+                        : CriticalStepMethod::altitude;
   e.energy_interval = s->get_int32("energy_interval", e.energy_interval);
   s->require(e.energy_interval >= 1, "energy_interval", "a positive step count");
   e.energy_growth_limit = s->get_positive("energy_growth_limit", e.energy_growth_limit);

@@ -19,6 +19,11 @@
 
 namespace softsim::hybrid {
 
+// How Δt_cr is found: 000 eq. 34 on the smallest altitude (stable_step.hpp), or the lumped
+// system's largest eigenvalue by power iteration (spectral_step.hpp).
+enum class CriticalStepMethod { altitude, power_iteration };
+const char* critical_step_name(CriticalStepMethod m);
+
 struct ExplicitConfig {
   int steps = 1000;
   std::optional<double> dt;
@@ -32,6 +37,7 @@ struct ExplicitConfig {
   // Rigid tools: "grid" (the broad phase, dynamics/contact_search.hpp) or "all" (every node each
   // step; the same results, slower).
   bool contact_search = true;
+  CriticalStepMethod critical_step = CriticalStepMethod::altitude;
 };
 
 struct OutputConfig {

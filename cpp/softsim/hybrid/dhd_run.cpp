@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <type_traits>
 
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/node_selection.hpp"
@@ -41,6 +42,7 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
   if (on_scene) on_scene(scene);
   DhdRun run;
   run.critical = scene.critical_step();
+  run.spectral = scene.spectral_step();
   run.setup_seconds = scene.setup_seconds();
   if (scene.is_static()) {
     // Wall time of the Newton solve alone (assembly, factorisations, increments), the static
@@ -69,6 +71,23 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
   run.kinds = scene.kinds();
   return run;
 }
+
+namespace {
+
+// The bulk modulus of a law's own parameters; the stable neo-Hookean law has none of its own
+// (Smith et al.'s λ is not a bulk modulus): the small-strain K it linearises to.
+double bulk_modulus(const fem::Material& m) {
+  return std::visit(
+      [&](const auto& law) -> double {
+        if constexpr (std::is_same_v<std::decay_t<decltype(law)>, material::StableNeoHookean>)
+          return material::bulk_modulus(m.elastic);
+        else
+          return law.bulk;
+      },
+      m.law);
+}
+
+}  // namespace
 
 nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, const DhdRun& run) {
   nlohmann::json p;
@@ -103,11 +122,15 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                    {"density", m.elastic.density},
                    {"mu", m.lame.mu},
                    {"lambda", m.lame.lambda},
-                   {"bulk_modulus", std::visit([](const auto& law) { return law.bulk; }, m.law)},
+                   {"bulk_modulus", bulk_modulus(m)},
                    {"wave_speed", run.critical.wave_speed}};
   if (const auto* mr = std::get_if<material::MooneyRivlin>(&m.law)) {
     p["material"]["C10"] = mr->c10;
     p["material"]["C01"] = mr->c01;
+  }
+  if (const auto* sn = std::get_if<material::StableNeoHookean>(&m.law)) {  // Smith et al.'s (μ, λ)
+    p["material"]["mu_stable"] = sn->mu;
+    p["material"]["lambda_stable"] = sn->lambda;
   }
   if (const auto* og = std::get_if<material::Ogden>(&m.law)) {
     p["material"]["mu_p"] = std::vector<double>(og->mu.begin(), og->mu.begin() + og->terms);
@@ -151,6 +174,7 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
   nlohmann::json dt_history = nlohmann::json::array();
   for (const auto& seg : r.step_history) dt_history.push_back({seg.first_step, seg.time, seg.dt});
   const int step_checks = c.explicit_solver.dt ? 0 : c.explicit_solver.dt_check_interval;
+  const double chosen_critical = run.spectral ? run.spectral->dt : run.critical.dt;
   p["solver"] = {{"kind", "explicit"},
                  {"method", "central_difference"},
                  {"steps", r.steps},
@@ -158,13 +182,22 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                  {"dt_critical", run.critical.dt},
                  {"min_altitude", run.critical.min_altitude},
                  {"wave_speed", run.critical.wave_speed},
-                 {"safety_factor", c.explicit_solver.dt ? r.dt / run.critical.dt : c.explicit_solver.safety_factor},
+                 {"critical_step", critical_step_name(c.explicit_solver.critical_step)},
+                 {"safety_factor", c.explicit_solver.dt ? r.dt / chosen_critical : c.explicit_solver.safety_factor},
                  {"dt_forced", run.step.forced},
                  {"dt_check_interval", step_checks},
                  {"dt_final", r.step_history.empty() ? r.dt : r.step_history.back().dt},
                  {"dt_history", dt_history},
                  {"time", r.time},
                  {"damping_alpha", c.damping_alpha}};
+  if (run.spectral)  // beside the altitude estimate: 2/ω_max of the lumped system at rest
+    p["solver"]["dt_critical_power_iteration"] = {{"dt", run.spectral->dt},
+                                                  {"omega_max", run.spectral->omega_max},
+                                                  {"rayleigh_quotient", run.spectral->rayleigh},
+                                                  {"residual", run.spectral->residual},
+                                                  {"tolerance", run.spectral->tolerance},
+                                                  {"iterations", run.spectral->iterations},
+                                                  {"converged", run.spectral->converged}};
   nlohmann::json en = {{"time", nlohmann::json::array()},
                        {"kinetic", nlohmann::json::array()},
                        {"strain", nlohmann::json::array()},

@@ -25,6 +25,7 @@ inline constexpr int kBenchSchemaVersion = 1;
 struct DhdRun {
   std::vector<fem::ElementKind> kinds;
   dynamics::CriticalStep critical;
+  std::optional<dynamics::SpectralStep> spectral;  // solver.critical_step "power_iteration"
   dynamics::StepChoice step;
   std::optional<dynamics::ExplicitResult> explicit_result;
   std::optional<dynamics::StaticResult> static_result;

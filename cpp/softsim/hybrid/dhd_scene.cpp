@@ -35,18 +35,31 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
                      std::to_string(mesh_->num_tets()) + " tetrahedra");
   critical_ = dynamics::critical_time_step(*mesh_, config_.material.elastic);
   if (!config_.static_solver) {
-    step_ = dynamics::choose_time_step(critical_, config_.explicit_solver.dt, config_.explicit_solver.safety_factor,
+    // The limit the step is chosen against: the altitude estimate, or 2/ω_max at rest.
+    dynamics::CriticalStep limit = critical_;
+    if (config_.explicit_solver.critical_step == CriticalStepMethod::power_iteration) {
+      spectral_ = dynamics::power_iteration_step(*mesh_, kinds_, config_.material, config_.scene);
+      limit.dt = spectral_->dt;
+    }
+    step_ = dynamics::choose_time_step(limit, config_.explicit_solver.dt, config_.explicit_solver.safety_factor,
                                        config_.explicit_solver.force_dt);
     elements_ = std::make_unique<fem::ElementSet>(*mesh_, kinds_, config_.material);
     // The critical step of the deformed mesh: TLED and ANP stiffness follows the deformation,
-    // small-strain and corotational stiffness does not.
+    // small-strain and corotational stiffness does not. Nor does an inversion-robust law's in the
+    // sense of 000 eq. 34: its tangent on the reference gradients stays bounded as an element
+    // flattens (no 1/J), while the deformed altitude goes to zero and would stop the run there.
     std::vector<char> follows(kinds_.size());
     for (std::size_t e = 0; e < kinds_.size(); ++e)
-      follows[e] = kinds_[e] == fem::ElementKind::tled || kinds_[e] == fem::ElementKind::anp;
+      follows[e] = (kinds_[e] == fem::ElementKind::tled || kinds_[e] == fem::ElementKind::anp) &&
+                   !elements_->inversion_allowed(kinds_[e]);
     deformed_step_ =
         std::make_unique<dynamics::DeformedCriticalStep>(*mesh_, std::move(follows), config_.material.elastic);
     dynamics::ExplicitOptions options = explicit_options(config_, step_.dt);
-    options.critical_step = [d = deformed_step_.get()](const double* u) { return d->at(u).dt; };
+    // With power iteration the deformed estimate keeps its ratio to the rest state: eq. 34 on
+    // the current geometry says by how much deformation shortens the limit, 2/ω_max at rest
+    // where it starts (no eigenvalue solve inside the step loop).
+    const double scale = spectral_ ? spectral_->dt / critical_.dt : 1.0;
+    options.critical_step = [d = deformed_step_.get(), scale](const double* u) { return scale * d->at(u).dt; };
     // The automatic step is re-estimated as the mesh deforms; a requested one is kept.
     options.adapt_step = !config_.explicit_solver.dt && config_.explicit_solver.dt_check_interval > 0;
     options.step_safety = config_.explicit_solver.safety_factor;

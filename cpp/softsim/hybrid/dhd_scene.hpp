@@ -6,6 +6,7 @@
 // This is the loop researchers write around a simulation (move the tool, step, read the force)
 // and the one engine under dhd_sim (run() is the whole configured run) and the Python API.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 
 #include "softsim/cutting/blade.hpp"
 #include "softsim/dynamics/explicit_solver.hpp"
+#include "softsim/dynamics/spectral_step.hpp"
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/dynamics/static_solver.hpp"
 #include "softsim/fem/element_set.hpp"
@@ -33,7 +35,10 @@ class DhdScene {
   const mesh::TetMesh& mesh() const { return *mesh_; }
   const DhdConfig& config() const { return config_; }
   const std::vector<fem::ElementKind>& kinds() const { return kinds_; }
+  // 000 eq. 34's Δt_cr on the smallest altitude, always; with solver.critical_step
+  // "power_iteration" also 2/ω_max of the lumped system at rest, which then sets the step.
   const dynamics::CriticalStep& critical_step() const { return critical_; }
+  const std::optional<dynamics::SpectralStep>& spectral_step() const { return spectral_; }
   const dynamics::StepChoice& step_choice() const { return step_; }
   double setup_seconds() const { return setup_seconds_; }
   bool is_static() const { return config_.static_solver; }
@@ -94,6 +99,7 @@ class DhdScene {
   DhdConfig config_;
   std::vector<fem::ElementKind> kinds_;
   dynamics::CriticalStep critical_;
+  std::optional<dynamics::SpectralStep> spectral_;
   dynamics::StepChoice step_;
   std::unique_ptr<dynamics::DeformedCriticalStep> deformed_step_;
   std::unique_ptr<fem::ElementSet> elements_;

@@ -1,5 +1,6 @@
 #include "softsim/material/hyperelastic.hpp"
 
+#include <type_traits>
 #include <utility>
 
 namespace softsim::material {
@@ -41,6 +42,10 @@ double volumetric_modulus(const HyperelasticLaw& law) {
 
 HyperelasticLaw isochoric_part(const HyperelasticLaw& law) {
   return std::visit([](const auto& l) -> HyperelasticLaw { return isochoric_part(l); }, law);
+}
+
+bool inversion_robust(const HyperelasticLaw& law) {
+  return std::visit([](const auto& l) { return kInversionRobust<std::decay_t<decltype(l)>>; }, law);
 }
 
 }  // namespace softsim::material

@@ -29,6 +29,8 @@
 //      config keys in cpp/apps/dhd_sim.md), giving the small-strain (E, ν) it linearises to;
 //   4. tests: a homogeneous deformation against the analytic stress, P and dP against finite
 //      differences of W and P, and rigid-rotation invariance (tests/cpp/test_material.cpp).
+//   5. only for a law defined, smooth and restoring at J ≤ 0: kInversionRobust<X> = true
+//      (inversion_robust.hpp), so its inverted elements get forces and are not failures.
 // Nothing else changes: the element set, the static solver, the stress and energy outputs all
 // dispatch on HyperelasticLaw.
 //
@@ -36,9 +38,9 @@
 // each step) or with a direction (anisotropy: a fibre direction per element) needs that state
 // stored per element slot and passed beside F; Ogden-type laws written in principal stretches
 // fit the interface as it is (P and dP from the eigen-decomposition of C: ogden.hpp). The
-// neo-Hookean law keeps its hand-written vectorised kernels
-// (fem/element_kernels.hpp); any other law runs the generic kernel, vectorised as far as its
-// first_piola allows.
+// neo-Hookean law keeps its hand-written vectorised kernels (fem/element_kernels.hpp), the stable
+// neo-Hookean law its own (fem/stable_kernels.hpp); any other law runs the generic kernel,
+// vectorised as far as its first_piola allows.
 #include <string>
 #include <variant>
 
@@ -47,14 +49,16 @@
 #include "softsim/material/mooney_rivlin.hpp"
 #include "softsim/material/neo_hookean.hpp"
 #include "softsim/material/ogden.hpp"
+#include "softsim/material/stable_neo_hookean.hpp"
 
 namespace softsim::material {
 
-using HyperelasticLaw = std::variant<NeoHookean, MooneyRivlin, Ogden>;
+using HyperelasticLaw = std::variant<NeoHookean, MooneyRivlin, Ogden, StableNeoHookean>;
 using HyperelasticLinearisation = std::variant<NeoHookeanLinearisation, MooneyRivlinLinearisation,
-                                               OgdenLinearisation>;
+                                               OgdenLinearisation, StableNeoHookeanLinearisation>;
 
-// "neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden": the config's material.model.
+// "neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden", "stable_neo_hookean": the
+// config's material.model.
 std::string law_name(const HyperelasticLaw& law);
 
 // The interface above on the variant: one dispatch per call, for the paths that take one
@@ -68,5 +72,7 @@ Eigen::Matrix3d first_piola_increment(const HyperelasticLaw& law, const Hyperela
                                       const Eigen::Matrix3d& dF);
 double volumetric_modulus(const HyperelasticLaw& law);
 HyperelasticLaw isochoric_part(const HyperelasticLaw& law);
+// kInversionRobust (inversion_robust.hpp) of the law the variant holds.
+bool inversion_robust(const HyperelasticLaw& law);
 
 }  // namespace softsim::material
