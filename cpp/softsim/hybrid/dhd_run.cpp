@@ -7,6 +7,7 @@
 #include "softsim/dynamics/node_selection.hpp"
 #include "softsim/fem/element_set.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
+#include "softsim/hybrid/law_parameters.hpp"
 
 namespace softsim::hybrid {
 
@@ -103,16 +104,9 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                    {"density", m.elastic.density},
                    {"mu", m.lame.mu},
                    {"lambda", m.lame.lambda},
-                   {"bulk_modulus", std::visit([](const auto& law) { return law.bulk; }, m.law)},
+                   {"bulk_modulus", bulk_modulus(m.law)},
                    {"wave_speed", run.critical.wave_speed}};
-  if (const auto* mr = std::get_if<material::MooneyRivlin>(&m.law)) {
-    p["material"]["C10"] = mr->c10;
-    p["material"]["C01"] = mr->c01;
-  }
-  if (const auto* og = std::get_if<material::Ogden>(&m.law)) {
-    p["material"]["mu_p"] = std::vector<double>(og->mu.begin(), og->mu.begin() + og->terms);
-    p["material"]["alpha_p"] = std::vector<double>(og->alpha.begin(), og->alpha.begin() + og->terms);
-  }
+  add_law_parameters(m, p["material"]);
   p["mesh"] = {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}};
   nlohmann::json reactions = nlohmann::json::array();
   const auto& rs = run.explicit_result ? run.explicit_result->reactions : run.static_result->reactions;
