@@ -15,6 +15,7 @@
 #include "softsim/fem/element_set.hpp"
 #include "softsim/material/hyperelastic.hpp"
 #include "softsim/material/transversely_isotropic.hpp"
+#include "softsim/material/viscoelastic.hpp"
 
 #include "support/scenes.hpp"
 
@@ -167,5 +168,46 @@ TEST(TransverselyIsotropic, ExplicitKernelUsesEachElementsOwnFibre) {
       diff = std::max(diff, (Eigen::Vector3d(f[0], f[1], f[2]) - expected[n]).norm());
     }
     EXPECT_GT(diff, 1e-3 * scale);
+  }
+}
+
+// Under a homogeneous deformation every nodal volume ratio is the elements' J, so the ANP
+// element (isochoric law per element, U(J) at the nodes) is TLED exactly: also with a fibre per
+// element, and with a Prony series advancing its internal variables step by step.
+TEST(TransverselyIsotropic, AnpEqualsTledUnderAHomogeneousDeformationWithFibresAndRelaxation) {
+  const mesh::TetMesh m = test_scenes::cuboid(3, 2, 2, 0.03, 0.02, 0.02);
+  Viscoelastic v;
+  v.base = kTI;
+  v.terms = 1;
+  v.g[0] = 0.4;
+  v.tau[0] = 0.01;
+  auto fibres = std::make_shared<std::vector<Eigen::Vector3d>>();
+  for (int e = 0; e < m.num_tets(); ++e) fibres->push_back(Eigen::Vector3d(1, 0.1 * (e % 5), 0).normalized());
+  Eigen::Matrix3d F;
+  F << 1.1, 0.05, 0.0, 0.02, 0.93, 0.01, 0.0, 0.03, 1.02;
+  std::vector<double> u(3 * m.num_nodes());
+  for (int i = 0; i < m.num_nodes(); ++i)
+    for (int k = 0; k < 3; ++k) u[3 * i + k] = ((F - Eigen::Matrix3d::Identity()) * m.nodes[i])[k];
+  for (const material::HyperelasticLaw& law : {material::HyperelasticLaw(kTI), material::HyperelasticLaw(v)}) {
+    fem::Material mat = fem::Material::make(small_strain_parameters(kTI, 1000.0), law);
+    mat.fibres = fibres;
+    fem::ElementSet tled(m, std::vector<fem::ElementKind>(m.num_tets(), fem::ElementKind::tled), mat);
+    fem::ElementSet anp(m, std::vector<fem::ElementKind>(m.num_tets(), fem::ElementKind::anp), mat);
+    for (int s = 0; s < 5; ++s) {
+      fem::KernelStats st;
+      tled.compute(u.data(), st, {s, 1e-3});
+      anp.compute(u.data(), st, {s, 1e-3});
+      double scale = 0, err = 0;
+      for (int n = 0; n < m.num_nodes(); ++n) {
+        double a[3], b[3];
+        tled.gather(n, a);
+        anp.gather(n, b);
+        for (int k = 0; k < 3; ++k) {
+          scale = std::max(scale, std::abs(a[k]));
+          err = std::max(err, std::abs(a[k] - b[k]));
+        }
+      }
+      EXPECT_LT(err, 1e-11 * scale) << law_name(law) << " step " << s;
+    }
   }
 }
