@@ -60,7 +60,11 @@ void element_data_kernel(const SoaView s, const double* __restrict u, int begin,
     SOFTSIM_LOAD_H(s, u, k)
     SOFTSIM_F_AND_COFACTOR
     jmin = std::min(jmin, J);
-    if (d.fibre[0]) material::set_fibre(l, Eigen::Vector3d(d.fibre[0][k], d.fibre[1][k], d.fibre[2][k]));
+    if (d.fibre[0]) {
+      const Eigen::Vector3d a(d.fibre[0][k], d.fibre[1][k], d.fibre[2][k]);
+      if constexpr (kVisco) material::set_fibre(l, step, a);
+      else material::set_fibre(l, a);
+    }
     Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
     double in[6 * material::Viscoelastic::kMaxTerms], out[6 * material::Viscoelastic::kMaxTerms];
     for (int c = 0; c < n_state; ++c) out[c] = in[c] = d.state_in[static_cast<std::size_t>(c) * d.stride + k];

@@ -90,6 +90,8 @@ Viscoelastic isochoric_part(const Viscoelastic& law) {
 
 PronyStep prony_step(const Viscoelastic& law, double dt) {
   PronyStep p;
+  p.isochoric = isochoric_base(law.base);
+  p.bulk = volumetric_modulus(law);
   for (int i = 0; i < law.terms; ++i) {
     p.decay[i] = std::exp(-dt / law.tau[i]);
     p.weight[i] = law.g[i] * (1.0 - p.decay[i]);
@@ -100,7 +102,16 @@ PronyStep prony_step(const Viscoelastic& law, double dt) {
 Eigen::Matrix3d relaxed_first_piola(const Viscoelastic& law, const PronyStep& step, const Eigen::Matrix3d& F,
                                     const double* state_in, double* state_out) {
   const Eigen::Matrix3d C = F.transpose() * F;
-  const Eigen::Matrix3d S = isochoric_second_piola(law, C);
+  const Eigen::Matrix3d Cinv = C.inverse();
+  const double J = F.determinant();
+  Eigen::Matrix3d S;
+  if (const auto* nh = std::get_if<NeoHookean>(&step.isochoric)) {
+    // The decoupled neo-Hookean S_iso = μ J^(−2/3) (I − I₁/3 C⁻¹) inline: the common case.
+    const double x = 1.0 / std::cbrt(J);
+    S = nh->mu * x * x * (Eigen::Matrix3d::Identity() - (C.trace() / 3.0) * Cinv);
+  } else {
+    S = base_second_piola(step.isochoric, C);
+  }
   const double s[6] = {S(0, 0), S(1, 1), S(2, 2), S(0, 1), S(1, 2), S(0, 2)};
   double sum[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < law.terms; ++i)
@@ -111,7 +122,7 @@ Eigen::Matrix3d relaxed_first_piola(const Viscoelastic& law, const PronyStep& st
     }
   Eigen::Matrix3d A;
   A << sum[0], sum[3], sum[5], sum[3], sum[1], sum[4], sum[5], sum[4], sum[2];
-  return base_first_piola(law.base, F) - F * A;
+  return F * (S + step.bulk * J * (J - 1.0) * Cinv - A);
 }
 
 const Eigen::Vector3d* fibre_of(const ElasticLaw& law) {
@@ -124,5 +135,10 @@ void set_fibre(ElasticLaw& law, const Eigen::Vector3d& a) {
   if (auto* ti = std::get_if<TransverselyIsotropic>(&law)) ti->fibre = a;
 }
 void set_fibre(Viscoelastic& law, const Eigen::Vector3d& a) { set_fibre(law.base, a); }
+
+void set_fibre(Viscoelastic& law, PronyStep& step, const Eigen::Vector3d& a) {
+  set_fibre(law.base, a);
+  set_fibre(step.isochoric, a);
+}
 
 }  // namespace softsim::material

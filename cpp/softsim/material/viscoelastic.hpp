@@ -86,14 +86,20 @@ Eigen::Matrix3d isochoric_second_piola(const Viscoelastic& law, const Eigen::Mat
 
 // The step of the recursion above for one element: Aᵢ (6 components each, xx yy zz xy yz xz,
 // term-major) from `state_in` to `state_out` with `decay[i]` = eᵢ for the step, then
-// P = P_base(F) − F Σᵢ Aᵢ. `state_in` and `state_out` may be the same.
+// P = F (S_iso + K J (J − 1) C⁻¹ − Σᵢ Aᵢ) (every base a series takes has that U(J)): the base's
+// P to round-off where the Aᵢ are zero. `state_in` and `state_out` may be the same.
 struct PronyStep {
   std::array<double, Viscoelastic::kMaxTerms> decay{};   // eᵢ
   std::array<double, Viscoelastic::kMaxTerms> weight{};  // gᵢ (1 − eᵢ)
+  ElasticLaw isochoric;  // the base's isochoric part, made once per step (and given the
+                         // element's fibre with set_fibre where fibres differ per element)
+  double bulk = 0;       // K of the base's U(J) = K/2 (J − 1)²
 };
 PronyStep prony_step(const Viscoelastic& law, double dt);
 Eigen::Matrix3d relaxed_first_piola(const Viscoelastic& law, const PronyStep& step, const Eigen::Matrix3d& F,
                                     const double* state_in, double* state_out);
+// The law and its step with element fibre `a` (no effect without a fibre).
+void set_fibre(Viscoelastic& law, PronyStep& step, const Eigen::Vector3d& a);
 
 // The fibre direction of a law that has one (transversely isotropic, or a series on one),
 // else nullptr; `set_fibre` replaces it (no effect on a law without one).
