@@ -80,10 +80,9 @@ def elset_lines(name: str, ccx_elements) -> list:
 def material_lines(info: dict, name: str = "MAT") -> list:
     """*MATERIAL of a material read by calculix_scene.read_material: its card and constants."""
     lines = [f"*MATERIAL, NAME={name}", info["ccx_card"]]
-    if info["model"] == "linear":
-        lines.append(f"{fmt(info['E'])}, {fmt(info['nu'])}")
-    else:
-        lines.append(f"{fmt(info['C10'])}, {fmt(info['D1'])}")
+    constants = info["ccx_constants"]
+    for k in range(0, len(constants), 8):  # at most eight constants a data line
+        lines.append(", ".join(fmt(c) for c in constants[k:k + 8]))
     return lines
 
 

@@ -3,6 +3,7 @@ semantics (cpp/apps/dhd_sim.md), so that one experiment can hand the same blocks
 to CalculiX and both solve the same scene.
 
 material:  {"model": "linear" | "neo_hookean_decoupled", "E": 5000, "nu": 0.35, "density": ...}
+           {"model": "mooney_rivlin", "C10", "C01", "K"} | {"model": "ogden", "mu": [..], "alpha": [..], "K"}
 boundary:  {"fixed": [set name | {selector, "components": "xyz"}],
             "prescribed": [{selector, "displacement": [x, y, z], "components": "xyz",
                             "ramp_time", "ramp"}],
@@ -31,30 +32,72 @@ def read_material(reader: ConfigReader) -> dict:
     """Elastic constants of the model and the CalculiX card that represents it."""
     reader.require_object()
     if reader.raw("model", required=True) == "neo_hookean_paper":
-        reader.fail("\"linear\" or \"neo_hookean_decoupled\": CalculiX's NEO HOOKE is the "
-                    "decoupled form; the paper's form (000 eq. 14) has no CalculiX counterpart",
-                    "model")
-    model = reader.choice("model", ["linear", "neo_hookean_decoupled"])
-    E = reader.number("E", DEFAULT_E, positive=True)
-    nu = reader.number("nu", DEFAULT_NU)
-    if not -1.0 < nu < 0.5:
-        reader.fail("a Poisson ratio in (-1, 0.5)", "nu")
+        reader.fail("\"linear\", \"neo_hookean_decoupled\", \"mooney_rivlin\" or \"ogden\": CalculiX's "
+                    "NEO HOOKE is the decoupled form; the paper's form (000 eq. 14) has no CalculiX "
+                    "counterpart", "model")
+    model = reader.choice("model", ["linear", "neo_hookean_decoupled", "mooney_rivlin", "ogden"])
+    if model in ("mooney_rivlin", "ogden"):
+        info = _read_invariant_law(reader, model)
+    else:
+        E = reader.number("E", DEFAULT_E, positive=True)
+        nu = reader.number("nu", DEFAULT_NU)
+        if not -1.0 < nu < 0.5:
+            reader.fail("a Poisson ratio in (-1, 0.5)", "nu")
+        mu = E / (2.0 * (1.0 + nu))
+        K = E / (3.0 * (1.0 - 2.0 * nu))
+        info = {"model": model, "E": E, "nu": nu, "mu": mu, "bulk_modulus": K,
+                "lambda": E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))}
     if reader.has("density"):
         reader.number("density", positive=True)  # statics: mass plays no part
     reader.reject_unknown()
-    mu = E / (2.0 * (1.0 + nu))
-    lam = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
-    K = E / (3.0 * (1.0 - 2.0 * nu))
-    info = {"model": model, "E": E, "nu": nu, "mu": mu, "lambda": lam, "bulk_modulus": K}
+    if "E" not in info:  # the small-strain constants the law linearises to
+        mu, K = info["mu"], info["bulk_modulus"]
+        info["lambda"] = K - 2.0 * mu / 3.0
+        info["E"] = 9.0 * K * mu / (3.0 * K + mu)
+        info["nu"] = (3.0 * K - 2.0 * mu) / (2.0 * (3.0 * K + mu))
     if model == "linear":
         info["ccx_card"] = "*ELASTIC"
-    else:
+        info["ccx_constants"] = [info["E"], info["nu"]]  # as given
+    elif model == "neo_hookean_decoupled":
         # CalculiX NEO HOOKE: U = C10 (Ibar1 - 3) + (J - 1)^2 / D1, the decoupled form
         # W = mu/2 (Ibar1 - 3) + K/2 (J - 1)^2, hence C10 = mu/2 and D1 = 2/K.
         info["ccx_card"] = "*HYPERELASTIC, NEO HOOKE"
         info["C10"] = mu / 2.0
         info["D1"] = 2.0 / K
+        info["ccx_constants"] = [info["C10"], info["D1"]]
     return info
+
+
+def _read_invariant_law(reader: ConfigReader, model: str) -> dict:
+    """Mooney-Rivlin and Ogden with dhd_sim's constants (material/mooney_rivlin.hpp, ogden.hpp)
+    and CalculiX's: MOONEY-RIVLIN U = C10 (Ibar1 - 3) + C01 (Ibar2 - 3) + (J - 1)^2 / D1 is ours
+    with D1 = 2/K; OGDEN, N=n U = sum 2 mu_i / alpha_i^2 (sum_k lbar_k^alpha_i - 3) + sum (J - 1)^(2i) / D_i
+    is ours (sum mu_p / alpha_p (...)) with mu_i = mu_p alpha_p / 2, D1 = 2/K and no higher
+    volumetric terms. CalculiX does not read D2 = 0 as "no term" (N = 2 with two equal terms
+    then differs from N = 1 by 1.3 % in a uniaxial test), so D2 = D3 = 1e30 make them vanish."""
+    K = reader.number("K", positive=True)
+    if model == "mooney_rivlin":
+        c10, c01 = reader.number("C10"), reader.number("C01")
+        if not c10 + c01 > 0:
+            reader.fail("C10 + C01 > 0 (the shear modulus is 2 (C10 + C01))", "C01")
+        return {"model": model, "mu": 2.0 * (c10 + c01), "bulk_modulus": K, "C10": c10, "C01": c01,
+                "D1": 2.0 / K, "ccx_card": "*HYPERELASTIC, MOONEY-RIVLIN", "ccx_constants": [c10, c01, 2.0 / K]}
+    mu = reader.raw("mu", required=True)
+    alpha = reader.raw("alpha", required=True)
+    ok = (isinstance(mu, list) and isinstance(alpha, list) and 1 <= len(mu) <= 3 and len(alpha) == len(mu)
+          and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in mu + alpha)
+          and all(a != 0 for a in alpha))
+    if not ok:
+        reader.fail("arrays mu and alpha of one length 1 to 3, every alpha non-zero", "mu")
+    shear = sum(0.5 * m * a for m, a in zip(mu, alpha))
+    if not shear > 0:
+        reader.fail("terms with sum mu_p alpha_p > 0", "mu")
+    constants = []
+    for m, a in zip(mu, alpha):
+        constants += [0.5 * m * a, a]
+    constants += [2.0 / K] + [1e30] * (len(mu) - 1)
+    return {"model": model, "mu": shear, "bulk_modulus": K, "mu_p": list(mu), "alpha_p": list(alpha),
+            "ccx_card": f"*HYPERELASTIC, OGDEN, N={len(mu)}", "ccx_constants": constants}
 
 
 # --------------------------------------------------------------------------- node selection

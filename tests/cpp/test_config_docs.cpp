@@ -162,7 +162,9 @@ json resolved(const hybrid::DhdConfig& c) {
            {{"model", c.model},
             {"E", c.material.elastic.youngs_modulus},
             {"nu", c.material.elastic.poisson_ratio},
-            {"density", c.material.elastic.density}}},
+            {"density", c.material.elastic.density},
+            // Read only with "transversely_isotropic": the default is the law's member initialiser.
+            {"fibre", vec3(material::TransverselyIsotropic{}.fibre)}}},
           {"damping", {{"alpha", c.damping_alpha}}},
           {"threads", c.threads},
           {"cuts", json::array_t(c.cuts.size())},

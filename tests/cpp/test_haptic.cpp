@@ -30,9 +30,10 @@ namespace {
 struct Block {
   std::shared_ptr<const mesh::TetMesh> mesh =
       std::make_shared<const mesh::TetMesh>(test_scenes::cuboid(8, 8, 4, 0.1, 0.1, 0.05));
-  hybrid::DhdConfig config(double damping) const {
+  hybrid::DhdConfig config(double damping,
+                           const nlohmann::json& material = {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}) const {
     const nlohmann::json j = {{"mesh", "unused"},
-                              {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                              {"material", material},
                               {"damping", {{"alpha", damping}}},
                               {"boundary", {{"fixed", {{{"set", "bottom"}}}}}},
                               {"solver", {{"kind", "explicit"}}}};
@@ -134,6 +135,30 @@ TEST(HapticScene, PressAndHoldSettlesOnTheStaticSpringSolution) {
   EXPECT_LT((r.force.back() - expected).norm(), 1e-4 * expected.norm()) << r.force.back().transpose() << " vs "
                                                                           << expected.transpose();
   EXPECT_GT(expected.z(), 0.1);  // the tool is pushed back up
+}
+
+// The tissue laws with more than F in the haptic scene: a fibre-reinforced, relaxing block (the
+// fibre law with a Prony series) pressed and held settles where the static solver, which sees
+// the relaxed law, puts the same spring.
+TEST(HapticScene, AFibreReinforcedRelaxingTissueSettlesOnItsRelaxedStaticSolution) {
+  Block b;
+  const nlohmann::json material = {{"model", "transversely_isotropic"}, {"mu", 1850.0}, {"eta", 3000.0},
+                                   {"K", 5556.0}, {"fibre", {1.0, 0.0, 0.0}}, {"density", 1000.0},
+                                   {"prony", {{"g", {0.5}}, {"tau", {0.05}}}}};
+  const haptic::HapticOptions opt = spring(100);
+  haptic::HapticScene scene(b.mesh, b.config(40, material), opt);
+  const int node = node_at(*b.mesh, {0.05, 0.05, 0.05});
+  const haptic::HapticRecord r = haptic::run_haptic(scene, press_down(b.mesh->nodes[node], 0.008, 0.3), 3000);
+  ASSERT_TRUE(scene.events().empty());
+  dynamics::Scene s = b.config(0, material).scene;
+  s.has_probe = true;
+  s.probe.node = node;
+  s.probe.stiffness = opt.probe_stiffness;
+  s.probe.displacement = Eigen::Vector3d(0, 0, -0.008);
+  const auto kinds = std::vector<fem::ElementKind>(b.mesh->num_tets(), fem::ElementKind::tled);
+  const auto relaxed = dynamics::solve_static(*b.mesh, kinds, b.config(0, material).material, s, dynamics::StaticOptions());
+  EXPECT_LT((r.force.back() + relaxed.probe_force).norm(), 1e-3 * relaxed.probe_force.norm())
+      << r.force.back().transpose() << " vs " << (-relaxed.probe_force).transpose();
 }
 
 // Contact "tool": a rigid plate (a plane tool over the top face) at the tip, pressed 3 mm and

@@ -107,6 +107,31 @@ def test_neo_hookean_uniaxial_compression_matches_analytic(cube, tmp_path):
     assert payload["material"]["D1"] == pytest.approx(2 / K)
 
 
+@pytest.mark.parametrize("material", [
+    {"model": "mooney_rivlin", "C10": 600.0, "C01": 300.0, "K": 6000.0},
+    {"model": "ogden", "mu": [700.0, 30.0, -100.0], "alpha": [1.3, 5.0, -2.0], "K": 6000.0},
+    # Two equal terms are one term of twice the modulus: catches a misread higher D_i.
+    {"model": "ogden", "mu": [400.0, 300.0], "alpha": [1.3, 1.3], "K": 6000.0},
+])
+def test_mooney_rivlin_and_ogden_uniaxial_match_the_closed_form(cube, material, tmp_path):
+    from pipeline.reports.validation_laws import uniaxial_force
+    path, mesh = cube
+    stretch = 0.8
+    payload = run_calculix(
+        {"mesh": str(path), "material": material,
+         "boundary": uniaxial_boundary(mesh, (stretch - 1) * SIZE), "analysis": {"increments": 5}},
+        tmp_path / "r.json")
+    force = uniaxial_force(material, stretch, SIZE * SIZE)  # dW/dλ < 0 in compression
+    assert reaction_force(payload, "prescribed top")[2] == pytest.approx(force, rel=1e-5)
+    # The law's energy is the neo-Hookean one where it reduces to it (C01 = 0 / one term, alpha = 2).
+    mu, K = 1000.0, 6000.0
+    _, sigma, _ = uniaxial_neo_hookean_decoupled(mu, K, stretch)
+    for law in ({"model": "mooney_rivlin", "C10": mu / 2, "C01": 0.0, "K": K},
+                {"model": "ogden", "mu": [mu], "alpha": [2.0], "K": K}):
+        lt = uniaxial_neo_hookean_decoupled(mu, K, stretch)[0]
+        assert uniaxial_force(law, stretch, 1.0) == pytest.approx(sigma * lt * lt, rel=1e-7)
+
+
 def test_pipeline_entry_point_resolves_the_mesh_from_the_root(cube, tmp_path):
     """run(ctx) as the pipeline calls it (config, out_path, root, log): a root-relative mesh
     path, an artifact at out_path, and the mesh's hash in the provenance."""

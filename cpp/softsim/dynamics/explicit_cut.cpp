@@ -27,8 +27,9 @@ CutReport ExplicitSolver::remove_elements(const mesh::TetMesh& mesh, const std::
   const double dt_before = step_size(n_done_ - 1);
   for (int e : elements) {
     if (e < 0 || e >= mesh.num_tets() || elements_.removed(e)) continue;
-    report.strain_energy += fem::element_energy(elements_.material(), elements_.kinds()[e], fem::tet_shape(mesh, e),
-                                                fem::corner_displacements(mesh, e, u));
+    report.strain_energy += fem::with_element_material(elements_.material(), e, [&](const fem::Material& m) {
+      return fem::element_energy(m, elements_.kinds()[e], fem::tet_shape(mesh, e), fem::corner_displacements(mesh, e, u));
+    });
   }
   report.elements = elements_.remove_elements(mesh, elements);
   const double density = elements_.material().elastic.density;

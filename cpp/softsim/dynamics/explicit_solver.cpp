@@ -244,7 +244,8 @@ void ExplicitSolver::start() {
   // Start-up (000 eq. 33 needs u(−Δt)): u(−Δt) = u0 − Δt v0 + Δt²/2 a0 with the initial
   // acceleration a0 = M⁻¹ (R − F(u0) − D v0).
   fem::KernelStats stats0;
-  elements_.compute(u0.data(), stats0);
+  elements_.reset_law_state();  // a law's internal variables start from zero (law_data.hpp)
+  elements_.compute(u0.data(), stats0, fem::StepClock{0, dt});
   if (stats0.min_j <= 0) {
     const MinJ inverted = min_j_element(elements_, u0.data());
     std::ostringstream msg;
@@ -291,6 +292,7 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
   const long long target = static_cast<long long>(n_done_) + steps;
   if (target > std::numeric_limits<int>::max()) throw InputError("solver: the step count exceeds the int range");
   const bool nodal_pressure = elements_.has_nodal_pressure();
+  const bool law_state = elements_.has_law_state();
   auto& buf = buf_;
   const auto t_loop = Clock::now();
   fire_due_events();
@@ -349,9 +351,10 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
             elements_.update_nodal_pressures(pressure_nodes_[p], pressure_nodes_[p + 1]);
           barrier();
         }
+        const fem::StepClock clock = law_state ? fem::StepClock{s, step_size(s)} : fem::StepClock{};
         for (int p = tid; p < T; p += nthreads)
           for (int q = tile_begin_[p]; q < tile_begin_[p + 1]; ++q) {
-            elements_.compute_tile(uc, q, st, timed ? me.kernel_seconds.data() : nullptr);
+            elements_.compute_tile(uc, q, st, timed ? me.kernel_seconds.data() : nullptr, clock);
             const auto t0 = timed ? Clock::now() : Clock::time_point();
             update_nodes(local_nodes_.data(), local_begin_[q], local_split_[q], local_begin_[q + 1], s, up, uc, un, check,
                          g);
@@ -496,7 +499,7 @@ std::vector<Eigen::Vector3d> ExplicitSolver::reactions() {
   // element forces from the same state, so this pass leaves the stepping unchanged.)
   const double* u = displacement();
   fem::KernelStats st;
-  elements_.compute(u, st);
+  elements_.compute(u, st, fem::StepClock{n_done_, step_size(n_done_)});  // step n_done_'s forces, state unmoved
   std::vector<Eigen::Vector3d> reactions(scene_.constraints.size(), Eigen::Vector3d::Zero());
   const double t = time();
   for (const auto& d : dofs_) {

@@ -59,7 +59,9 @@ Assembler::Assembler(const mesh::TetMesh& mesh, const std::vector<ElementKind>& 
 void Assembler::internal_forces(const double* u, Eigen::VectorXd& f) const {
   f.setZero(3 * num_nodes_);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
-    const Corners fe = element_forces(material_, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
+    const Corners fe = with_element_material(material_, e, [&](const Material& m) {
+      return element_forces(m, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
+    });
     for (int a = 0; a < 4; ++a) f.segment<3>(3 * tets_[e][a]) += fe[a];
   }
   nodal_pressure_.add_forces(u, f);
@@ -70,7 +72,9 @@ void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
   double* values = K.valuePtr();
   std::fill(values, values + K.nonZeros(), 0.0);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
-    const ElementMatrix Ke = element_tangent(material_, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
+    const ElementMatrix Ke = with_element_material(material_, e, [&](const Material& m) {
+      return element_tangent(m, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
+    });
     const int* idx = &value_index_[e * 144];
     for (int r = 0; r < 12; ++r)
       for (int c = 0; c < 12; ++c) values[idx[r * 12 + c]] += Ke(r, c);
@@ -81,7 +85,9 @@ void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
 double Assembler::strain_energy(const double* u) const {
   double w = 0;
   for (std::size_t e = 0; e < tets_.size(); ++e)
-    w += element_energy(material_, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
+    w += with_element_material(material_, e, [&](const Material& m) {
+      return element_energy(m, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
+    });
   return w + nodal_pressure_.energy(u);
 }
 

@@ -20,6 +20,21 @@ Material Material::make(const material::ElasticParameters& elastic, const materi
   return m;
 }
 
+Eigen::Vector3d Material::fibre(int e) const {
+  if (fibres) return (*fibres)[static_cast<std::size_t>(e)];
+  const Eigen::Vector3d* a = material::fibre_of(law);
+  return a ? *a : Eigen::Vector3d::Zero();
+}
+
+Material Material::for_element(int e) const {
+  Material m = *this;
+  if (fibres) {
+    material::set_fibre(m.law, fibre(e));
+    material::set_fibre(m.isochoric, fibre(e));
+  }
+  return m;
+}
+
 Eigen::Matrix3d first_piola(const Material& m, ElementKind kind, const Eigen::Matrix3d& F) {
   switch (kind) {
     case ElementKind::linear: return material::linear_stress(m.lame, F);

@@ -112,6 +112,17 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
   }
   build_tiles(key, std::max(tile_nodes, 1));
   build_nodal_pressure(mesh);
+  if (material::fibre_of(material_.law)) {
+    for (auto& v : fibre_) v.assign(stride_, 0.0);
+    for (int i = 0; i < stride_; ++i)
+      if (original_[i] >= 0) {
+        const Eigen::Vector3d a = material_.fibre(original_[i]);
+        for (int c = 0; c < 3; ++c) fibre_[c][i] = a[c];
+      }
+  }
+  state_size_ = material::state_size(material_.law);
+  if (state_size_ > 0)
+    for (auto& v : law_state_) v.assign(static_cast<std::size_t>(state_size_) * stride_, 0.0);
   slot_of_.assign(mesh.num_tets(), -1);
   for (int i = 0; i < stride_; ++i)
     if (original_[i] >= 0) slot_of_[original_[i]] = i;
@@ -134,6 +145,8 @@ std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const st
       for (int a : mesh.tets[e]) anp_nodes.push_back(a);
     for (auto& g : grad_) g[i] = 0.0;
     volume_[i] = 0.0;
+    for (auto& buffer : law_state_)  // a removed slot holds no stress (the others keep theirs)
+      for (int c = 0; c < state_size_; ++c) buffer[static_cast<std::size_t>(c) * stride_ + i] = 0.0;
     if (!volume_ratio_.empty()) volume_ratio_[i] = 1.0;
   }
   // ANP: V_a = Σ ⁰V_e / 4 over the corners' remaining ANP elements, w_ae = ⁰V_e / (4 V_a), in the
@@ -247,7 +260,24 @@ void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
   for (int n = 0; n < num_nodes_; ++n) ready_nodes_[fill[ready_tile[n]]++] = n;
 }
 
-void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, double* seconds) {
+void ElementSet::reset_law_state() {
+  for (auto& buffer : law_state_) std::fill(buffer.begin(), buffer.end(), 0.0);
+}
+
+kernels::LawData ElementSet::law_data(const StepClock& clock) {
+  kernels::LawData d;
+  if (!fibre_[0].empty())
+    for (int c = 0; c < 3; ++c) d.fibre[c] = fibre_[c].data();
+  if (state_size_ > 0) {
+    d.state_in = law_state_[clock.step & 1].data();
+    d.state_out = law_state_[(clock.step + 1) & 1].data();
+  }
+  d.stride = stride_;
+  d.dt = clock.dt;
+  return d;
+}
+
+void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, double* seconds, const StepClock& clock) {
   const int G = static_cast<int>(groups_.size());
   for (int gi = 0; gi < G; ++gi) {
     // Named copies, not a structured binding: the lambda below captures them (C++17 forbids
@@ -255,7 +285,7 @@ void ElementSet::compute_tile(const double* u, int tile, KernelStats& stats, dou
     const int b = tile_blocks_[static_cast<std::size_t>(tile) * G + gi].first;
     const int e = tile_blocks_[static_cast<std::size_t>(tile) * G + gi].second;
     if (b >= e || !computed_per_element(groups_[gi])) continue;
-    timed(seconds, groups_[gi].kind, [&] { compute_group(groups_[gi], u, b, e, stats); });
+    timed(seconds, groups_[gi].kind, [&] { compute_group(groups_[gi], u, b, e, stats, clock); });
   }
   if (assembled_linear())
     timed(seconds, ElementKind::linear,
@@ -293,22 +323,26 @@ kernels::SoaView ElementSet::view() {
       volume_.data(), buffer_.data(), stride_};
 }
 
-void ElementSet::compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats) {
+void ElementSet::compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats,
+                               const StepClock& clock) {
   const kernels::SoaView s = view();
   const double mu = material_.lame.mu, lambda = material_.lame.lambda;
   switch (g.kind) {
     case ElementKind::linear: kernels::linear_kernel(s, u, begin, end, mu, lambda); break;
-    case ElementKind::tled: kernels::tled_forces(material_.law, s, u, begin, end, scratch_.data(), stats.min_j); break;
+    case ElementKind::tled:
+      kernels::tled_forces(material_.law, s, u, begin, end, scratch_.data(), stats.min_j, law_data(clock));
+      break;
     case ElementKind::corotational:
       kernels::corotational_kernel(s, u, begin, end, mu, lambda, scratch_.data(), stats.min_j);
       break;
     case ElementKind::anp:
-      kernels::anp_forces(material_.isochoric, s, u, begin, end, nodal_pressure_.data(), scratch_.data(), stats.min_j);
+      kernels::anp_forces(material_.isochoric, s, u, begin, end, nodal_pressure_.data(), scratch_.data(), stats.min_j,
+                          law_data(clock));
       break;
   }
 }
 
-void ElementSet::compute(const double* u, KernelStats& stats) {
+void ElementSet::compute(const double* u, KernelStats& stats, const StepClock& clock) {
   if (has_nodal_pressure()) {
     for (int t = 0; t < num_tiles_; ++t) compute_volume_ratios(u, t, stats);
     update_nodal_pressures(0, num_nodes_);
@@ -316,7 +350,7 @@ void ElementSet::compute(const double* u, KernelStats& stats) {
   if (assembled_linear())  // every node is ready in exactly one tile
     for (int t = 0; t < num_tiles_; ++t) compute_linear_rows(u, ready_nodes_begin(t), ready_nodes_end(t));
   for (const Group& g : groups_)
-    if (computed_per_element(g)) compute_group(g, u, g.begin, g.end, stats);
+    if (computed_per_element(g)) compute_group(g, u, g.begin, g.end, stats, clock);
 }
 
 std::vector<int> ElementSet::balanced_ranges(int parts) const {
@@ -377,8 +411,9 @@ void ElementSet::energies(const double* u, int begin, int end, double* energy, d
       min_j = J;
       min_j_element = e;
     }
-    energy[i] = J > 0 || may_invert || kinds_[e] == ElementKind::linear ? element_energy(material_, kinds_[e], sh, c)
-                                                                          : 0.0;
+    energy[i] = J > 0 || may_invert || kinds_[e] == ElementKind::linear
+                    ? with_element_material(material_, e, [&](const Material& m) { return element_energy(m, kinds_[e], sh, c); })
+                    : 0.0;
   }
 }
 

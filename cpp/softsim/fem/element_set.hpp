@@ -27,6 +27,7 @@
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_kind.hpp"
+#include "softsim/fem/law_data.hpp"
 #include "softsim/fem/linear_rows.hpp"
 #include "softsim/fem/nodal_volumes.hpp"
 #include "softsim/fem/tet_geometry.hpp"
@@ -72,8 +73,20 @@ class ElementSet {
   // Element phase over the whole set, in one thread: the ANP pre-pass, the assembled linear
   // rows and the corner forces of every element into the buffer, after which gather() gives
   // every node's force. J of tled, corotational and anp elements is tracked in `stats`. (The
-  // explicit engine's threads sweep the tiles instead, see compute_tile.)
-  void compute(const double* u, KernelStats& stats);
+  // explicit engine's threads sweep the tiles instead, see compute_tile.) `clock`: the step
+  // whose forces these are, for a law with internal variables (law_data.hpp).
+  void compute(const double* u, KernelStats& stats, const StepClock& clock = {});
+
+  // ---- internal variables of the law (none for most laws: nothing stored, nothing done) ----
+  bool has_law_state() const { return state_size_ > 0; }
+  // Back to the initial (zero) state, as at the start of a run (ExplicitSolver::reset).
+  void reset_law_state();
+  // Internal variable c of internal slot i after step `step` (the buffer step + 1 reads).
+  double law_state(int step, int i, int c) const {
+    return law_state_[(step + 1) & 1][static_cast<std::size_t>(c) * stride_ + i];
+  }
+  int law_state_size() const { return state_size_; }
+  int slot_of(int element) const { return slot_of_[element]; }
 
   // ---- the ANP pre-pass (nothing to do without ANP elements) ----
   bool has_nodal_pressure() const { return count(ElementKind::anp) > 0; }
@@ -122,7 +135,8 @@ class ElementSet {
   // incident corner forces written — once its ready tile is computed, so a sweep "compute tile t,
   // then update the nodes ready at t" consumes the buffer while it is still in cache.
   int num_tiles() const { return num_tiles_; }
-  void compute_tile(const double* u, int tile, KernelStats& stats, double* seconds = nullptr);
+  void compute_tile(const double* u, int tile, KernelStats& stats, double* seconds = nullptr,
+                    const StepClock& clock = {});
   const int* ready_nodes_begin(int tile) const { return ready_nodes_.data() + ready_begin_[tile]; }
   const int* ready_nodes_end(int tile) const { return ready_nodes_.data() + ready_begin_[tile + 1]; }
   int first_tile(int node) const { return first_tile_[node]; }
@@ -165,7 +179,9 @@ class ElementSet {
   int num_removed() const { return num_removed_; }
 
  private:
-  void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats);
+  void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats,
+                     const StepClock& clock);
+  kernels::LawData law_data(const StepClock& clock);
   bool computed_per_element(const Group& g) const { return g.kind != ElementKind::linear || !assembled_linear(); }
   void compute_linear_rows(const double* u, const int* node_begin, const int* node_end);
   void build_tiles(const std::vector<int>& key, int tile_nodes);
@@ -187,6 +203,11 @@ class ElementSet {
   AlignedVector<double> volume_;
   AlignedVector<double> buffer_;   // 12 × stride corner forces
   AlignedVector<double> scratch_;  // per slot: what a kernel's fix-up pass decides on (J, polar convergence)
+  // A law with a fibre: its unit direction per slot (x, y, z); a law with internal variables:
+  // state_size_ doubles per slot in each of two buffers (law_data.hpp). Empty otherwise.
+  std::array<AlignedVector<double>, 3> fibre_;
+  std::array<AlignedVector<double>, 2> law_state_;
+  int state_size_ = 0;
   // ANP: det F per slot, the node → (element, weight) lists with elements given by their slot,
   // and p_a at index 3a.
   AlignedVector<double> volume_ratio_;

@@ -53,7 +53,7 @@ void ElementStress::evaluate(const double* u) {
   for (std::size_t e = 0; e < tets_.size(); ++e) {
     const Eigen::Matrix3d F = deformation_gradient(shapes_[e], corner_displacements(tets_[e], u));
     strain_[e] = green_lagrange_strain(F);
-    stress_[e] = cauchy_stress(material_, kinds_[e], F, pbar_[e]);
+    stress_[e] = with_element_material(material_, e, [&](const Material& m) { return cauchy_stress(m, kinds_[e], F, pbar_[e]); });
     von_mises_[e] = von_mises_stress(stress_[e]);
   }
 }

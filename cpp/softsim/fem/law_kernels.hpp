@@ -6,17 +6,20 @@
 // the stable neo-Hookean law its own (stable_kernels.hpp); any other law runs the generic kernel, which asks the law for P(F) element by element
 // (forces ⁰V P ∇N, 000 eq. 13 written with P = F S).
 #include "softsim/fem/element_kernels.hpp"
+#include "softsim/fem/law_data.hpp"
 #include "softsim/material/hyperelastic.hpp"
 
 namespace softsim::fem::kernels {
 
-// TLED with `law`. `scratch` (one per slot) is the kernels' fix-up scratch (element_kernels.hpp).
+// TLED with `law`. `scratch` (one per slot) is the kernels' fix-up scratch (element_kernels.hpp);
+// `data` the fibres and internal variables of a law that has them (law_data.hpp), else empty.
 void tled_forces(const material::HyperelasticLaw& law, const SoaView s, const double* __restrict u, int begin,
-                 int end, double* __restrict scratch, double& min_j);
+                 int end, double* __restrict scratch, double& min_j, const LawData& data = {});
 
 // ANP with `isochoric`, the law's isochoric part (material::isochoric_part): ⁰V (P_iso(F) + p̄ cof F) ∇N
 // with p̄ the mean of the corners' nodal pressures (`pressure`, p_a at index 3a).
 void anp_forces(const material::HyperelasticLaw& isochoric, const SoaView s, const double* __restrict u, int begin,
-                int end, const double* __restrict pressure, double* __restrict scratch, double& min_j);
+                int end, const double* __restrict pressure, double* __restrict scratch, double& min_j,
+                const LawData& data = {});
 
 }  // namespace softsim::fem::kernels

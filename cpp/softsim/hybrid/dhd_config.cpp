@@ -1,9 +1,11 @@
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/hybrid/tool_config.hpp"
+#include "softsim/hybrid/law_config.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include "softsim/dynamics/node_selection.hpp"
@@ -119,16 +121,22 @@ material::Ogden read_ogden(const io::JsonReader& m) {
 
 // The constitutive law of the TLED and ANP elements (material/hyperelastic.hpp), apart from
 // the element formulation the partition chooses: a neo-Hookean form with (E, ν), or
-// Mooney–Rivlin with (C10, C01, K), or Ogden with (mu[], alpha[], K), whose small-strain (E, ν) the linear and corotational
-// elements and the stable step use.
-void read_material(const io::JsonReader& cfg, DhdConfig& c) {
+// Mooney–Rivlin with (C10, C01, K), or Ogden with (mu[], alpha[], K), or transversely isotropic
+// with (mu, eta, K, fibre; law_config.hpp), whose small-strain (E, ν) the linear and
+// corotational elements and the stable step use; "prony" relaxes any of them but the paper's
+// neo-Hookean form ("visco_neo_hookean": the decoupled form with (E, ν) and a series).
+void read_material(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
   material::ElasticParameters p;
   material::MooneyRivlin mooney_rivlin;
   material::Ogden ogden;
+  material::TransverselyIsotropic transversely_isotropic;
+  std::optional<material::Viscoelastic> prony;  // its base set below
+  std::shared_ptr<const std::vector<Eigen::Vector3d>> fibres;
   if (auto m = cfg.optional("material")) {
     c.model_defaulted = !m->has("model");
-    c.model = m->get_choice("model", {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden",
-                                              "stable_neo_hookean", "linear"},
+    c.model = m->get_choice("model",
+                             {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden",
+                              "stable_neo_hookean", "transversely_isotropic", "visco_neo_hookean", "linear"},
                              c.model);
     if (c.model == "mooney_rivlin") {
       mooney_rivlin.c10 = m->get_double("C10");
@@ -145,11 +153,26 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
       p = material::small_strain_parameters(ogden, p.density);
       m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
                  "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+    } else if (c.model == "transversely_isotropic") {
+      transversely_isotropic = read_transversely_isotropic(*m);
+      p.density = m->get_positive("density", p.density);
+      p = material::small_strain_parameters(transversely_isotropic, p.density);
+      m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
+                 "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+      fibres = read_fibre_regions(*m, mesh, transversely_isotropic.fibre);
     } else {
       p.youngs_modulus = m->get_positive("E", p.youngs_modulus);
       p.poisson_ratio = m->get_double("nu", p.poisson_ratio);
       m->require(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5, "nu", "a Poisson's ratio in (-1, 0.5)");
       p.density = m->get_positive("density", p.density);
+    }
+    if (m->has("prony")) {
+      m->require(c.model != "neo_hookean_paper" && c.model != "linear" && c.model != "stable_neo_hookean", "prony",
+                 "no Prony series on this model (it relaxes the isochoric stress of neo_hookean_decoupled, "
+                 "visco_neo_hookean, mooney_rivlin, ogden or transversely_isotropic)");
+      prony = read_prony(m->at("prony"), material::NeoHookean{});
+    } else {
+      m->require(c.model != "visco_neo_hookean", "prony", "a Prony series {\"g\": [...], \"tau\": [...]}");
     }
     // A subnormal density (5e-324) or a ratio E/density that overflows gives an infinite wave
     // speed and a zero critical step (000 eq. 34): refused here, where the member is known.
@@ -158,15 +181,27 @@ void read_material(const io::JsonReader& cfg, DhdConfig& c) {
     m->reject_unknown();
   }
   c.linear_material = c.model == "linear";
+  material::ElasticLaw base;
   if (c.model == "mooney_rivlin")
-    c.material = fem::Material::make(p, mooney_rivlin);
+    base = mooney_rivlin;
   else if (c.model == "ogden")
-    c.material = fem::Material::make(p, ogden);
-  else if (c.model == "stable_neo_hookean")  // (E, ν) through Smith et al.'s reparametrisation
-    c.material = fem::Material::make(p, material::StableNeoHookean::from(p));
+    base = ogden;
+  else if (c.model == "transversely_isotropic")
+    base = transversely_isotropic;
   else
-    c.material = fem::Material::make(p, c.model == "neo_hookean_decoupled" ? material::NeoHookeanForm::decoupled
-                                                                           : material::NeoHookeanForm::paper);
+    base = material::NeoHookean::from(c.model == "neo_hookean_paper" || c.model == "linear"
+                                          ? material::NeoHookeanForm::paper
+                                          : material::NeoHookeanForm::decoupled,
+                                      p);
+  if (c.model == "stable_neo_hookean") {  // (E, ν) through Smith et al.'s reparametrisation
+    c.material = fem::Material::make(p, material::StableNeoHookean::from(p));
+  } else if (prony) {
+    prony->base = base;
+    c.material = fem::Material::make(p, *prony);
+  } else {
+    c.material = fem::Material::make(p, std::visit([](const auto& l) -> material::HyperelasticLaw { return l; }, base));
+  }
+  c.material.fibres = fibres;
 }
 
 fem::ElementKind read_kind(const io::JsonReader& r, const std::string& key, const std::vector<std::string>& choices,
@@ -447,7 +482,7 @@ std::string read_mesh_path(const io::JsonReader& config) { return config.get_inp
 DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) {
   DhdConfig c;
   c.mesh_path = cfg.get_string("mesh");  // as written (the mesh is loaded by the caller)
-  read_material(cfg, c);
+  read_material(cfg, mesh, c);
   if (auto d = cfg.optional("damping")) {
     c.damping_alpha = d->get_double("alpha", c.damping_alpha);
     d->require(c.damping_alpha >= 0, "alpha", "a non-negative damping coefficient (1/s)");

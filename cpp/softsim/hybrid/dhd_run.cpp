@@ -8,6 +8,7 @@
 #include "softsim/dynamics/node_selection.hpp"
 #include "softsim/fem/element_set.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
+#include "softsim/hybrid/law_parameters.hpp"
 
 namespace softsim::hybrid {
 
@@ -72,23 +73,6 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
   return run;
 }
 
-namespace {
-
-// The bulk modulus of a law's own parameters; the stable neo-Hookean law has none of its own
-// (Smith et al.'s λ is not a bulk modulus): the small-strain K it linearises to.
-double bulk_modulus(const fem::Material& m) {
-  return std::visit(
-      [&](const auto& law) -> double {
-        if constexpr (std::is_same_v<std::decay_t<decltype(law)>, material::StableNeoHookean>)
-          return material::bulk_modulus(m.elastic);
-        else
-          return law.bulk;
-      },
-      m.law);
-}
-
-}  // namespace
-
 nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, const DhdRun& run) {
   nlohmann::json p;
   // The full field is most of the artifact on a large mesh; a run read only for its trajectories,
@@ -124,18 +108,7 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                    {"lambda", m.lame.lambda},
                    {"bulk_modulus", bulk_modulus(m)},
                    {"wave_speed", run.critical.wave_speed}};
-  if (const auto* mr = std::get_if<material::MooneyRivlin>(&m.law)) {
-    p["material"]["C10"] = mr->c10;
-    p["material"]["C01"] = mr->c01;
-  }
-  if (const auto* sn = std::get_if<material::StableNeoHookean>(&m.law)) {  // Smith et al.'s (μ, λ)
-    p["material"]["mu_stable"] = sn->mu;
-    p["material"]["lambda_stable"] = sn->lambda;
-  }
-  if (const auto* og = std::get_if<material::Ogden>(&m.law)) {
-    p["material"]["mu_p"] = std::vector<double>(og->mu.begin(), og->mu.begin() + og->terms);
-    p["material"]["alpha_p"] = std::vector<double>(og->alpha.begin(), og->alpha.begin() + og->terms);
-  }
+  add_law_parameters(m, p["material"]);
   p["mesh"] = {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}};
   nlohmann::json reactions = nlohmann::json::array();
   const auto& rs = run.explicit_result ? run.explicit_result->reactions : run.static_result->reactions;

@@ -48,4 +48,20 @@ bool inversion_robust(const HyperelasticLaw& law) {
   return std::visit([](const auto& l) { return kInversionRobust<std::decay_t<decltype(l)>>; }, law);
 }
 
+const Eigen::Vector3d* fibre_of(const HyperelasticLaw& law) {
+  if (const auto* ti = std::get_if<TransverselyIsotropic>(&law)) return &ti->fibre;
+  if (const auto* v = std::get_if<Viscoelastic>(&law)) return fibre_of(*v);
+  return nullptr;
+}
+
+void set_fibre(HyperelasticLaw& law, const Eigen::Vector3d& a) {
+  if (auto* ti = std::get_if<TransverselyIsotropic>(&law)) ti->fibre = a;
+  if (auto* v = std::get_if<Viscoelastic>(&law)) set_fibre(*v, a);
+}
+
+int state_size(const HyperelasticLaw& law) {
+  const auto* v = std::get_if<Viscoelastic>(&law);
+  return v ? v->state_size() : 0;
+}
+
 }  // namespace softsim::material

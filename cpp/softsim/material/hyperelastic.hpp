@@ -34,13 +34,16 @@
 // Nothing else changes: the element set, the static solver, the stress and energy outputs all
 // dispatch on HyperelasticLaw.
 //
-// Not covered yet: a law with internal variables (viscoelasticity: per-element state updated
-// each step) or with a direction (anisotropy: a fibre direction per element) needs that state
-// stored per element slot and passed beside F; Ogden-type laws written in principal stretches
-// fit the interface as it is (P and dP from the eigen-decomposition of C: ogden.hpp). The
-// neo-Hookean law keeps its hand-written vectorised kernels (fem/element_kernels.hpp), the stable
-// neo-Hookean law its own (fem/stable_kernels.hpp); any other law runs the generic kernel,
-// vectorised as far as its first_piola allows.
+// Laws with more than F: a direction (transversely_isotropic.hpp: a fibre direction, one per
+// element through fem::Material::fibres, stored per element slot by the element set) or
+// internal variables (viscoelastic.hpp: a Prony series whose tensors per element and term the
+// element set stores per slot, double-buffered by step parity, and advances once per explicit
+// step). Both run their own kernel (fem/law_kernels.cpp); without internal variables (static
+// solver, outputs) the viscoelastic law is its relaxed response. Ogden-type laws written in
+// principal stretches fit the interface as it is (P and dP from the eigen-decomposition of C:
+// ogden.hpp). The neo-Hookean law keeps its hand-written vectorised kernels
+// (fem/element_kernels.hpp), the stable neo-Hookean law its own (fem/stable_kernels.hpp); any
+// other law runs the generic kernel, vectorised as far as its first_piola allows.
 #include <string>
 #include <variant>
 
@@ -50,15 +53,19 @@
 #include "softsim/material/neo_hookean.hpp"
 #include "softsim/material/ogden.hpp"
 #include "softsim/material/stable_neo_hookean.hpp"
+#include "softsim/material/transversely_isotropic.hpp"
+#include "softsim/material/viscoelastic.hpp"
 
 namespace softsim::material {
 
-using HyperelasticLaw = std::variant<NeoHookean, MooneyRivlin, Ogden, StableNeoHookean>;
-using HyperelasticLinearisation = std::variant<NeoHookeanLinearisation, MooneyRivlinLinearisation,
-                                               OgdenLinearisation, StableNeoHookeanLinearisation>;
+using HyperelasticLaw =
+    std::variant<NeoHookean, MooneyRivlin, Ogden, StableNeoHookean, TransverselyIsotropic, Viscoelastic>;
+using HyperelasticLinearisation =
+    std::variant<NeoHookeanLinearisation, MooneyRivlinLinearisation, OgdenLinearisation, StableNeoHookeanLinearisation,
+                 TransverselyIsotropicLinearisation, ViscoelasticLinearisation>;
 
-// "neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden", "stable_neo_hookean": the
-// config's material.model.
+// "neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden", "stable_neo_hookean",
+// "transversely_isotropic" (the config's material.model), or a base's name with "+prony".
 std::string law_name(const HyperelasticLaw& law);
 
 // The interface above on the variant: one dispatch per call, for the paths that take one
@@ -74,5 +81,11 @@ double volumetric_modulus(const HyperelasticLaw& law);
 HyperelasticLaw isochoric_part(const HyperelasticLaw& law);
 // kInversionRobust (inversion_robust.hpp) of the law the variant holds.
 bool inversion_robust(const HyperelasticLaw& law);
+
+// The law's fibre direction (nullptr: isotropic) and its replacement (viscoelastic.hpp).
+const Eigen::Vector3d* fibre_of(const HyperelasticLaw& law);
+void set_fibre(HyperelasticLaw& law, const Eigen::Vector3d& a);
+// Doubles of internal state per element (0: none).
+int state_size(const HyperelasticLaw& law);
 
 }  // namespace softsim::material
