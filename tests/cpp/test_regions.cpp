@@ -143,6 +143,14 @@ TEST(Regions, OnALinearModelBothCouplingsSettleOnTheWholeModelsForce) {
   ASSERT_TRUE(exchange.events().empty());
   EXPECT_LT((re.force.back() - expected).norm(), 1e-4 * expected.norm())
       << re.force.back().transpose() << " vs " << expected.transpose();
+  // An implicit-dynamic secondary (its own inertia) has the same equilibrium.
+  auto dynamic = with_regions(0.03, regions::Coupling::exchange, 5, false);
+  dynamic.regions.secondary_dynamic = true;
+  haptic::HapticScene implicit(b.mesh, b.config(40, "linear"), dynamic);
+  const auto ri = haptic::run_haptic(implicit, path, frames);
+  ASSERT_TRUE(implicit.events().empty());
+  EXPECT_LT((ri.force.back() - expected).norm(), 1e-4 * expected.norm())
+      << ri.force.back().transpose() << " vs " << expected.transpose();
   // While the press moves, the condensed coupling follows the whole model far more closely.
   haptic::HapticScene moving_whole(b.mesh, b.config(40, "linear"), whole_model());
   const auto rw = haptic::run_haptic(moving_whole, path, 300);

@@ -119,6 +119,9 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
     o.secondary_every = r->get_int32("secondary_every", o.secondary_every);
     r->require(o.secondary_every >= 1 && o.secondary_every <= 1000000, "secondary_every", "a frame count in [1, 10^6]");
     o.interpolate = r->get_bool("interpolate", o.interpolate);
+    o.secondary_dynamic = r->get_choice("secondary", {"static", "implicit"}, "static") == "implicit";
+    if (o.secondary_dynamic && o.coupling != regions::Coupling::exchange)
+      r->fail_member("secondary", "\"static\" with the condensed coupling (an implicit-dynamic secondary needs \"exchange\")");
     o.skip_below = r->get_double("skip_below", o.skip_below);
     r->require(o.skip_below >= 0 && std::isfinite(o.skip_below), "skip_below", "a displacement >= 0 m (0: never skip)");
     if (const auto a = r->optional("adaptive")) {

@@ -37,6 +37,8 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
   const auto t0 = Clock::now();
   check_supported(model);
   if (options.secondary_every < 1) throw InputError("regions: secondary_every must be at least 1");
+  if (options.secondary_dynamic && options.coupling != Coupling::exchange)
+    throw InputError("regions: an implicit-dynamic secondary needs the exchange coupling (001 eq. 7)");
   if (!(options.skip_below >= 0)) throw InputError("regions: skip_below must not be negative");
   const bool exchange = options.coupling == Coupling::exchange;
   // The primary region's scene: the interface held at the published values (exchange), then the
@@ -72,7 +74,8 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
   // A primary region that covers the mesh leaves no secondary region: the whole model.
   if (region_.num_secondary_elements(mesh) > 0) {
     if (exchange)
-      exchange_ = std::make_unique<ExchangeSecondary>(linear, region_);
+      exchange_ = std::make_unique<ExchangeSecondary>(
+          linear, region_, options.secondary_dynamic ? dt * substeps * options.secondary_every : 0.0);
     else
       condensed_ = std::make_unique<CondensedSecondary>(linear, region_);
   }
@@ -113,6 +116,7 @@ void RegionSolver::start_from(const std::vector<double>& u, const std::vector<do
       solver_->set_prescribed_displacement(first_interface_constraint_ + static_cast<int>(a),
                                            Eigen::Vector3d(interface_last_.data() + 3 * a));
   }
+  if (exchange_) exchange_->start_at(u_.data());
   last_update_ = stats_.frames;
   input_at_update_.assign(u_.begin(), u_.end());
 }
@@ -176,7 +180,9 @@ void RegionSolver::primary_previous(double* u) const {
 }
 
 void RegionSolver::refresh_secondary() {
-  if (exchange_ || condensed_) secondary_update(true);
+  // A dynamic secondary steps only at its own rate: its last step (at most one update old) is
+  // what the next region starts from.
+  if ((exchange_ && !exchange_->dynamic()) || condensed_) secondary_update(true);
 }
 
 void RegionSolver::secondary_update(bool forced) {

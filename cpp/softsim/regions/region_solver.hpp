@@ -50,6 +50,9 @@ struct RegionOptions {
   int secondary_every = 10;     // frames between secondary updates (a rate of 1 kHz / every)
   bool interpolate = true;      // exchange: interface values interpolated between updates (001 Fig. 4)
   double skip_below = 0;        // m: skip a secondary update whose input moved less (0: never skip)
+  // Exchange: the secondary region implicit-dynamic with the step secondary_every × frame step
+  // (its inertia and damping; 001 §4's implicit solver) instead of quasi-static.
+  bool secondary_dynamic = false;
   AdaptiveRadius adaptive;
 };
 

@@ -44,7 +44,7 @@ RegionTracker::RegionTracker(const mesh::TetMesh& mesh, const hybrid::DhdConfig&
   for (int i = 0; i < n; ++i) gravity.segment<3>(3 * i) = masses_[i] * model.scene.gravity;
   linear_ = std::make_unique<LinearModel>(
       mesh, model.material, dynamics::constrained_mask(dynamics::resolve_constraints(model.scene, n), n),
-      std::move(gravity));
+      std::move(gravity), masses_, model.damping_alpha);
   rest_.assign(3 * static_cast<std::size_t>(n), 0.0);
   const bool adaptive = options.adaptive.kind != AdaptiveRadius::Kind::fixed;
   level_frames_.assign(adaptive ? options.adaptive.levels : 1, 0);

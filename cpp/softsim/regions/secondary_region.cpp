@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "softsim/fem/assembly.hpp"
+#include "softsim/io/errors.hpp"
 #include "softsim/regions/dof_blocks.hpp"
 
 namespace softsim::regions {
@@ -26,24 +27,62 @@ Eigen::VectorXd gather(const Eigen::VectorXd& v, const std::vector<int>& dofs) {
 
 }  // namespace
 
-LinearModel::LinearModel(const mesh::TetMesh& m, const fem::Material& mat, std::vector<char> c, Eigen::VectorXd g)
-    : mesh(&m), material(mat), constrained(std::move(c)), gravity_force(std::move(g)), K(small_strain_stiffness(m, mat)) {}
+LinearModel::LinearModel(const mesh::TetMesh& m, const fem::Material& mat, std::vector<char> c, Eigen::VectorXd g,
+                         std::vector<double> node_masses, double alpha)
+    : mesh(&m), material(mat), masses(std::move(node_masses)), damping_alpha(alpha), constrained(std::move(c)),
+      gravity_force(std::move(g)), K(small_strain_stiffness(m, mat)) {}
 
-ExchangeSecondary::ExchangeSecondary(const LinearModel& model, const PrimaryRegion& region) : model_(&model) {
+ExchangeSecondary::ExchangeSecondary(const LinearModel& model, const PrimaryRegion& region, double step)
+    : model_(&model), step_(step) {
   const int n = model.mesh->num_nodes();
   secondary_ = free_dofs(n, model.constrained, [&](int i) { return !region.interior[i]; });
   primary_ = free_dofs(n, model.constrained, [&](int i) { return region.interior[i] != 0; });
   K_sp_ = dof_block(model.K, secondary_, primary_);
-  solver_.factorize(dof_block(model.K, secondary_, secondary_), "regions: secondary region (001 eq. 7)");
+  Eigen::SparseMatrix<double> K_ss = dof_block(model.K, secondary_, secondary_);
+  const int ns = static_cast<int>(secondary_.size());
+  if (dynamic()) {
+    if (model.masses.empty()) throw InputError("regions: an implicit-dynamic secondary needs the lumped masses");
+    mass_.resize(ns);
+    for (int k = 0; k < ns; ++k) mass_[k] = model.masses[secondary_[k] / 3];
+    // Newmark, γ = 1/2, β = 1/4: K_eff = K + (4/H² + 2α/H) M.
+    const double c = 4.0 / (step * step) + 2.0 * model.damping_alpha / step;
+    for (int k = 0; k < ns; ++k) K_ss.coeffRef(k, k) += c * mass_[k];
+    u_s_.setZero(ns);
+    v_s_.setZero(ns);
+    a_s_.setZero(ns);
+  }
+  solver_.factorize(K_ss, "regions: secondary region (001 eq. 7)");
   u_p_.setZero(static_cast<int>(primary_.size()));
-  rhs_.setZero(static_cast<int>(secondary_.size()));
+  rhs_.setZero(ns);
+}
+
+void ExchangeSecondary::start_at(const double* u) {
+  if (!dynamic()) return;
+  for (std::size_t k = 0; k < secondary_.size(); ++k) u_s_[k] = u[secondary_[k]];
+  v_s_.setZero();
+  a_s_.setZero();
 }
 
 void ExchangeSecondary::solve(double* u, double gravity_factor) {
   for (std::size_t k = 0; k < primary_.size(); ++k) u_p_[k] = u[primary_[k]];
   rhs_.noalias() = -(K_sp_ * u_p_);
   for (std::size_t k = 0; k < secondary_.size(); ++k) rhs_[k] += gravity_factor * model_->gravity_force[secondary_[k]];
+  if (dynamic()) {
+    // Newmark's average acceleration: M (4/H² u + 4/H v + a) + α M (2/H u + v) on the right.
+    const double H = step_, alpha = model_->damping_alpha;
+    rhs_.array() += mass_.array() * ((4.0 / (H * H) + 2.0 * alpha / H) * u_s_.array() +
+                                     (4.0 / H + alpha) * v_s_.array() + a_s_.array());
+  }
   solver_.solve_in_place(rhs_);
+  if (dynamic()) {
+    const double H = step_;
+    for (std::size_t k = 0; k < secondary_.size(); ++k) {
+      const double a_next = 4.0 / (H * H) * (rhs_[k] - u_s_[k]) - 4.0 / H * v_s_[k] - a_s_[k];
+      v_s_[k] += 0.5 * H * (a_s_[k] + a_next);
+      a_s_[k] = a_next;
+      u_s_[k] = rhs_[k];
+    }
+  }
   for (std::size_t k = 0; k < secondary_.size(); ++k) u[secondary_[k]] = rhs_[k];
 }
 

@@ -33,9 +33,11 @@ namespace softsim::regions {
 // constrained dofs (held at zero), built once per scene.
 struct LinearModel {
   LinearModel(const mesh::TetMesh& mesh, const fem::Material& material, std::vector<char> constrained,
-              Eigen::VectorXd gravity_force);
+              Eigen::VectorXd gravity_force, std::vector<double> masses = {}, double damping_alpha = 0);
   const mesh::TetMesh* mesh;
   fem::Material material;
+  std::vector<double> masses;       // lumped, per node (an implicit-dynamic secondary's inertia)
+  double damping_alpha = 0;         // D = α M
   std::vector<char> constrained;    // per dof
   Eigen::VectorXd gravity_force;    // M g per dof at full gravity (zero without gravity)
   Eigen::SparseMatrix<double> K;    // small-strain stiffness of the whole mesh
@@ -43,11 +45,18 @@ struct LinearModel {
 
 class ExchangeSecondary {
  public:
+  // `step` > 0: the secondary is implicit-dynamic with that step (Newmark's average acceleration,
+  // unconditionally stable; 001 §4's implicit solver): its own lumped mass and damping enter,
+  // K_eff = K_SS + (4/H² + 2α/H) M_SS, factorised once. `step` = 0: quasi-static.
   // NumericalError if the secondary block is singular (a secondary piece held by nothing).
-  ExchangeSecondary(const LinearModel& model, const PrimaryRegion& region);
+  ExchangeSecondary(const LinearModel& model, const PrimaryRegion& region, double step = 0);
   // Reads the primary interior's dofs of `u` (3 per node, global), writes the secondary's
-  // (interface included); `gravity_factor` scales the gravity load (its ramp).
+  // (interface included); `gravity_factor` scales the gravity load (its ramp). Dynamic: one step
+  // of H from the last solution.
   void solve(double* u, double gravity_factor);
+  // Dynamic: the secondary at `u` (global), at rest.
+  void start_at(const double* u);
+  bool dynamic() const { return step_ > 0; }
   int dofs() const { return static_cast<int>(secondary_.size()); }
 
  private:
@@ -56,6 +65,8 @@ class ExchangeSecondary {
   Eigen::SparseMatrix<double> K_sp_;
   SparseCholesky solver_;
   Eigen::VectorXd u_p_, rhs_;
+  double step_ = 0;
+  Eigen::VectorXd mass_, u_s_, v_s_, a_s_;  // dynamic: lumped mass per dof and the state
 };
 
 class CondensedSecondary {
