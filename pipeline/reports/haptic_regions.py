@@ -314,9 +314,10 @@ def plain_words(inputs, cpu):
                     f"resonances, leaves {chirp['rms']:.2g} %.")
     if liver:
         text.append(f"On the liver, held at one end and swinging as a whole under the tool, even a slide leaves "
-                    f"{liver['rms']:.2g} %: a quasi-static far field has no mass, so it cannot carry the organ's "
-                    "own motion. 001 also allows dynamic secondary solvers. A secondary region integrated "
-                    "implicitly in time, with its inertia, is what these scenes need next.")
+                    f"{liver['rms']:.2g} %. A quasi-static far field has no mass, so it cannot carry the organ's own "
+                    "motion. The frictionless grasp also slides over the curved surface, along a path that small "
+                    "differences change. regions_dynamic_summary.md tests the first cause with an "
+                    "implicit-dynamic far field.")
     text.append("001 eq. 7's exchange adds the lag of its interface values to this. Held values beat interpolated "
                 "ones here, because interpolation adds another update of lag, and both can turn unstable (the events "
                 "above).")
