@@ -23,6 +23,7 @@
 #include <cmath>
 #include <memory>
 
+#include "bench/paper_mesh.hpp"
 #include "softsim/dynamics/explicit_solver.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/stable_step.hpp"
@@ -41,17 +42,8 @@ namespace {
 
 constexpr int kStepsPerIteration = 200;
 
-const mesh::TetMesh& paper_mesh() {
-  static const mesh::TetMesh m = [] {
-    mesh::CuboidSpec s;
-    s.cells = {17, 17, 10};
-    s.size = Eigen::Vector3d(0.17, 0.17, 0.10);
-    return mesh::make_cuboid(s);
-  }();
-  return m;
-}
-
-const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};  // 000 §3.1
+using bench::kPaper;
+using bench::paper_mesh;
 
 // Partition codes: 0 all TLED (paper form), 1 all TLED (decoupled form), 2 all linear
 // (assembled rows), 3 all corotational, 4 all ANP (decoupled form), 5 all linear element by

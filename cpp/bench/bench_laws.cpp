@@ -13,6 +13,7 @@
 #include <cmath>
 #include <memory>
 
+#include "bench/paper_mesh.hpp"
 #include "softsim/fem/element_set.hpp"
 #include "softsim/material/hyperelastic.hpp"
 #include "softsim/mesh/cuboid.hpp"
@@ -21,17 +22,8 @@ using namespace softsim;
 
 namespace {
 
-const mesh::TetMesh& paper_mesh() {
-  static const mesh::TetMesh m = [] {
-    mesh::CuboidSpec s;
-    s.cells = {17, 17, 10};
-    s.size = Eigen::Vector3d(0.17, 0.17, 0.10);
-    return mesh::make_cuboid(s);
-  }();
-  return m;
-}
-
-const material::ElasticParameters kPaper{5000.0, 0.35, 1000.0};  // 000 §3.1
+using bench::kPaper;
+using bench::paper_mesh;
 
 fem::Material material_of(int code) {
   const material::NeoHookean nh = material::NeoHookean::from(material::NeoHookeanForm::decoupled, kPaper);

@@ -19,6 +19,7 @@
 #include "softsim/io/errors.hpp"
 #include "softsim/mesh/surface.hpp"
 
+#include "support/haptic_block.hpp"
 #include "support/scenes.hpp"
 
 using namespace softsim;
@@ -26,35 +27,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A 8 x 8 x 4-cell block, 10 x 10 x 5 cm, bottom fixed; TLED, E = 5 kPa (000 §3.1), damped.
-struct Block {
-  std::shared_ptr<const mesh::TetMesh> mesh =
-      std::make_shared<const mesh::TetMesh>(test_scenes::cuboid(8, 8, 4, 0.1, 0.1, 0.05));
-  hybrid::DhdConfig config(double damping,
-                           const nlohmann::json& material = {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}) const {
-    const nlohmann::json j = {{"mesh", "unused"},
-                              {"material", material},
-                              {"damping", {{"alpha", damping}}},
-                              {"boundary", {{"fixed", {{{"set", "bottom"}}}}}},
-                              {"solver", {{"kind", "explicit"}}}};
-    return hybrid::read_dhd_config(io::JsonReader(j, "block.json"), *mesh);
-  }
-};
+using Block = test_scenes::HapticBlock;
+using test_scenes::press_down;
 
 haptic::HapticOptions spring(double stiffness) {
   haptic::HapticOptions opt;
   opt.probe_stiffness = stiffness;
   return opt;
-}
-
-// Pressed straight down (−z, ProbePath's default) from `origin` to `depth` over `ramp_time`, held.
-haptic::ProbePath press_down(const Eigen::Vector3d& origin, double depth, double ramp_time) {
-  haptic::ProbePath path;
-  path.origin = origin;
-  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
-  path.signal.amplitude = depth;
-  path.signal.ramp_time = ramp_time;
-  return path;
 }
 
 int node_at(const mesh::TetMesh& m, const Eigen::Vector3d& x) {

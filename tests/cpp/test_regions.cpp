@@ -16,25 +16,15 @@
 #include "softsim/io/errors.hpp"
 #include "softsim/regions/primary_region.hpp"
 
+#include "support/haptic_block.hpp"
 #include "support/scenes.hpp"
 
 using namespace softsim;
 
 namespace {
 
-// A 8 x 8 x 4-cell block, 10 x 10 x 5 cm, bottom fixed, E = 5 kPa (000 §3.1), damped.
-struct Block {
-  std::shared_ptr<const mesh::TetMesh> mesh =
-      std::make_shared<const mesh::TetMesh>(test_scenes::cuboid(8, 8, 4, 0.1, 0.1, 0.05));
-  hybrid::DhdConfig config(double damping, const std::string& model = "neo_hookean_paper") const {
-    const nlohmann::json j = {{"mesh", "unused"},
-                              {"material", {{"model", model}, {"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
-                              {"damping", {{"alpha", damping}}},
-                              {"boundary", {{"fixed", {{{"set", "bottom"}}}}}},
-                              {"solver", {{"kind", "explicit"}}}};
-    return hybrid::read_dhd_config(io::JsonReader(j, "block.json"), *mesh);
-  }
-};
+using Block = test_scenes::HapticBlock;
+using test_scenes::press_down;
 
 haptic::HapticOptions with_regions(double radius, regions::Coupling coupling, int every, bool interpolate = true) {
   haptic::HapticOptions opt;
@@ -51,15 +41,6 @@ haptic::HapticOptions whole_model() {
   haptic::HapticOptions opt;
   opt.probe_stiffness = 100;
   return opt;
-}
-
-haptic::ProbePath press_down(const Eigen::Vector3d& origin, double depth, double ramp_time) {
-  haptic::ProbePath path;
-  path.origin = origin;
-  path.signal.kind = multirate::ProbeSignal::Kind::kRampHold;
-  path.signal.amplitude = depth;
-  path.signal.ramp_time = ramp_time;
-  return path;
 }
 
 const Eigen::Vector3d kTop(0.05, 0.05, 0.05);

@@ -73,27 +73,6 @@ void HapticScene::prepare(const Eigen::Vector3d& probe) {
   regions_->follow(s.nodes, s.weights, frames_);
 }
 
-Eigen::Vector3d HapticScene::regions_frame(const Eigen::Vector3d& probe) {
-  update_contact(probe, displacement());
-  Eigen::Vector3d f = Eigen::Vector3d::Zero();
-  if (in_contact_) {
-    f = options_.probe_stiffness * (probe - contact_.position);
-    if (options_.contact == ContactMode::push && f.dot(contact_.normal) > 0) {
-      in_contact_ = false;
-      f.setZero();
-    }
-  }
-  if (!in_contact_) {
-    regions_->frame({});
-    return Eigen::Vector3d::Zero();
-  }
-  regions_->follow(contact_.nodes, contact_.weights, frames_);
-  for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
-  regions_->frame(applied_);
-  contact_ = surface_.at(contact_.triangle, contact_.weights, regions_->displacement());
-  return -options_.probe_stiffness * (probe - contact_.position);
-}
-
 void HapticScene::reset() {
   back_to_rest();
   frames_ = 0;
@@ -159,7 +138,6 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
   if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
   const double k = options_.probe_stiffness;
   try {
-    if (options_.use_regions) return regions_frame(probe);
     cut_with_blade(probe);
     if (options_.contact == ContactMode::tool) {
       // The instrument itself is the tip: the tool sits there for the frame's substeps, and the
@@ -171,7 +149,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       tool_touching_ = model_->solver().tool_contacts(0) > 0;
       return f;
     }
-    update_contact(probe, model_->displacement());
+    update_contact(probe, displacement());
     Eigen::Vector3d f = Eigen::Vector3d::Zero();  // on the tissue
     if (in_contact_) {
       f = k * (probe - contact_.position);
@@ -181,16 +159,19 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
         f.setZero();
       }
     }
-    if (in_contact_) {
+    if (in_contact_)
       for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
-      model_->solver().set_applied_forces(applied_);
+    if (options_.use_regions) {
+      // The primary region follows the contact (built, moved or resized), then one frame.
+      if (in_contact_) regions_->follow(contact_.nodes, contact_.weights, frames_);
+      regions_->frame(in_contact_ ? applied_ : std::vector<dynamics::AppliedForce>());
     } else {
-      model_->solver().set_applied_forces({});
+      model_->solver().set_applied_forces(in_contact_ ? applied_ : std::vector<dynamics::AppliedForce>());
+      model_->step(substeps_);
+      follow_cuts();  // a cut the config scheduled inside this frame
     }
-    model_->step(substeps_);
-    follow_cuts();  // a cut the config scheduled inside this frame
     if (!in_contact_) return Eigen::Vector3d::Zero();
-    contact_ = surface_.at(contact_.triangle, contact_.weights, model_->displacement());
+    contact_ = surface_.at(contact_.triangle, contact_.weights, displacement());
     return -k * (probe - contact_.position);
   } catch (const NumericalError& e) {
     // Keep answering the device: report, return the model to rest, and start the contact anew.

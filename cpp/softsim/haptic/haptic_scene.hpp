@@ -101,7 +101,6 @@ class HapticScene {
   void follow_cuts();
   // The model at rest and no contact; frames and events kept (recovery from a failure).
   void back_to_rest();
-  Eigen::Vector3d regions_frame(const Eigen::Vector3d& probe);
 
   std::shared_ptr<const mesh::TetMesh> mesh_;
   HapticOptions options_;

@@ -127,9 +127,9 @@ material::Ogden read_ogden(const io::JsonReader& m) {
 // neo-Hookean form ("visco_neo_hookean": the decoupled form with (E, ν) and a series).
 void read_material(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig& c) {
   material::ElasticParameters p;
-  material::MooneyRivlin mooney_rivlin;
-  material::Ogden ogden;
-  material::TransverselyIsotropic transversely_isotropic;
+  // Mooney–Rivlin, Ogden and the fibre law are given by their own moduli, from which (E, ν) follow;
+  // the neo-Hookean forms (and the stable law) are given by (E, ν).
+  std::optional<material::ElasticLaw> by_moduli;
   std::optional<material::Viscoelastic> prony;  // its base set below
   std::shared_ptr<const std::vector<Eigen::Vector3d>> fibres;
   if (auto m = cfg.optional("material")) {
@@ -138,27 +138,26 @@ void read_material(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
                              {"neo_hookean_paper", "neo_hookean_decoupled", "mooney_rivlin", "ogden",
                               "stable_neo_hookean", "transversely_isotropic", "visco_neo_hookean", "linear"},
                              c.model);
+    // The small-strain (E, ν) a law given by its moduli linearises to, with the density.
+    const auto small_strain_of = [&](const auto& law) {
+      p.density = m->get_positive("density", p.density);
+      p = material::small_strain_parameters(law, p.density);
+      m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
+                 "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+      by_moduli = law;
+    };
     if (c.model == "mooney_rivlin") {
+      material::MooneyRivlin mooney_rivlin;
       mooney_rivlin.c10 = m->get_double("C10");
       mooney_rivlin.c01 = m->get_double("C01");
       m->require(mooney_rivlin.c10 + mooney_rivlin.c01 > 0, "C01", "C10 + C01 > 0 (the shear modulus is 2 (C10 + C01))");
       mooney_rivlin.bulk = m->get_positive("K");
-      p.density = m->get_positive("density", p.density);
-      p = material::small_strain_parameters(mooney_rivlin, p.density);
-      m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
-                 "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+      small_strain_of(mooney_rivlin);
     } else if (c.model == "ogden") {
-      ogden = read_ogden(*m);
-      p.density = m->get_positive("density", p.density);
-      p = material::small_strain_parameters(ogden, p.density);
-      m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
-                 "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+      small_strain_of(read_ogden(*m));
     } else if (c.model == "transversely_isotropic") {
-      transversely_isotropic = read_transversely_isotropic(*m);
-      p.density = m->get_positive("density", p.density);
-      p = material::small_strain_parameters(transversely_isotropic, p.density);
-      m->require(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0, "K",
-                 "moduli whose small-strain Young's modulus 9 K mu / (3 K + mu) is positive and finite");
+      const material::TransverselyIsotropic transversely_isotropic = read_transversely_isotropic(*m);
+      small_strain_of(transversely_isotropic);
       fibres = read_fibre_regions(*m, mesh, transversely_isotropic.fibre);
     } else {
       p.youngs_modulus = m->get_positive("E", p.youngs_modulus);
@@ -181,18 +180,12 @@ void read_material(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConf
     m->reject_unknown();
   }
   c.linear_material = c.model == "linear";
-  material::ElasticLaw base;
-  if (c.model == "mooney_rivlin")
-    base = mooney_rivlin;
-  else if (c.model == "ogden")
-    base = ogden;
-  else if (c.model == "transversely_isotropic")
-    base = transversely_isotropic;
-  else
-    base = material::NeoHookean::from(c.model == "neo_hookean_paper" || c.model == "linear"
-                                          ? material::NeoHookeanForm::paper
-                                          : material::NeoHookeanForm::decoupled,
-                                      p);
+  const material::ElasticLaw base =
+      by_moduli ? *by_moduli
+                : material::ElasticLaw(material::NeoHookean::from(
+                      c.model == "neo_hookean_paper" || c.model == "linear" ? material::NeoHookeanForm::paper
+                                                                            : material::NeoHookeanForm::decoupled,
+                      p));
   if (c.model == "stable_neo_hookean") {  // (E, ν) through Smith et al.'s reparametrisation
     c.material = fem::Material::make(p, material::StableNeoHookean::from(p));
   } else if (prony) {

@@ -33,6 +33,10 @@ ElasticParameters from_lame(double mu, double lambda, double density) {
   return p;
 }
 
+ElasticParameters from_shear_bulk(double mu, double bulk, double density) {
+  return from_lame(mu, bulk - 2.0 * mu / 3.0, density);
+}
+
 double dilatational_wave_speed(const ElasticParameters& p) {
   const double E = p.youngs_modulus, nu = p.poisson_ratio;
   return std::sqrt(E * (1.0 - nu) / (p.density * (1.0 + nu) * (1.0 - 2.0 * nu)));  // 000 eq. 35

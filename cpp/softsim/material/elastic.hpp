@@ -22,6 +22,9 @@ LameParameters lame_parameters(const ElasticParameters& p);
 double bulk_modulus(const ElasticParameters& p);
 // Inverse map: (μ, λ) -> (E, ν) with the given density.
 ElasticParameters from_lame(double mu, double lambda, double density);
+// The same from the shear and bulk moduli (λ = K − 2μ/3): the small-strain constants of the laws
+// given by (μ, K) (Mooney–Rivlin, Ogden, transversely isotropic).
+ElasticParameters from_shear_bulk(double mu, double bulk, double density);
 // c = sqrt(E (1 − ν) / (ρ (1 + ν)(1 − 2ν)))  (000 eq. 35): the P-wave speed λ + 2μ over ρ.
 double dilatational_wave_speed(const ElasticParameters& p);
 

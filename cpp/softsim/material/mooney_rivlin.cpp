@@ -1,6 +1,7 @@
 #include "softsim/material/mooney_rivlin.hpp"
 
 #include "softsim/io/errors.hpp"
+#include "softsim/material/isochoric_increment.hpp"
 
 namespace softsim::material {
 
@@ -16,7 +17,7 @@ void validate_moduli(const MooneyRivlin& law) {
 
 ElasticParameters small_strain_parameters(const MooneyRivlin& law, double density) {
   const double mu = 2.0 * (law.c10 + law.c01);
-  return from_lame(mu, law.bulk - 2.0 * mu / 3.0, density);  // λ = K − 2μ/3
+  return from_shear_bulk(mu, law.bulk, density);
 }
 
 double strain_energy_density(const MooneyRivlin& law, const Eigen::Matrix3d& F) {
@@ -46,14 +47,9 @@ MooneyRivlinLinearisation linearise(const MooneyRivlin&, const Eigen::Matrix3d& 
 Eigen::Matrix3d first_piola_increment(const MooneyRivlin& law, const MooneyRivlinLinearisation& at,
                                       const Eigen::Matrix3d& dF) {
   const Eigen::Matrix3d& F = at.F;
-  const double J = F.determinant();
-  const Eigen::Matrix3d Finv = F.inverse();
-  const Eigen::Matrix3d FinvT = Finv.transpose();
-  const double trFinvdF = (Finv * dF).trace();
-  const double dJ = J * trFinvdF;
-  const double a = std::pow(J, -2.0 / 3.0);
-  const double da = -2.0 / 3.0 * a * trFinvdF;
-  const Eigen::Matrix3d dFinvT = -FinvT * dF.transpose() * FinvT;
+  const IsochoricIncrement k(F, dF);
+  const double a = k.a, da = k.da;
+  const Eigen::Matrix3d &FinvT = k.FinvT, &dFinvT = k.dFinvT;
   const Eigen::Matrix3d C = F.transpose() * F;
   const Eigen::Matrix3d dC = dF.transpose() * F + F.transpose() * dF;
   const double I1 = C.trace(), dI1 = dC.trace();
@@ -64,8 +60,7 @@ Eigen::Matrix3d first_piola_increment(const MooneyRivlin& law, const MooneyRivli
                                a * a *
                                    (dI1 * F + I1 * dF - dF * C - F * dC - (2.0 / 3.0) * dI2 * FinvT -
                                     (2.0 / 3.0) * I2 * dFinvT);
-  const Eigen::Matrix3d vol = law.bulk * ((2.0 * J - 1.0) * dJ * FinvT + J * (J - 1.0) * dFinvT);
-  return 2.0 * law.c10 * iso1 + 2.0 * law.c01 * iso2 + vol;
+  return 2.0 * law.c10 * iso1 + 2.0 * law.c01 * iso2 + k.volumetric(law.bulk);
 }
 
 double volumetric_modulus(const MooneyRivlin& law) { return law.bulk; }

@@ -23,7 +23,7 @@ void validate_moduli(const Ogden& law) {
 
 ElasticParameters small_strain_parameters(const Ogden& law, double density) {
   const double mu = law.shear_modulus();
-  return from_lame(mu, law.bulk - 2.0 * mu / 3.0, density);  // λ = K − 2μ/3
+  return from_shear_bulk(mu, law.bulk, density);
 }
 
 double strain_energy_density(const Ogden& law, const Eigen::Matrix3d& F) {

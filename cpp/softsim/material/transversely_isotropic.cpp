@@ -1,6 +1,7 @@
 #include "softsim/material/transversely_isotropic.hpp"
 
 #include "softsim/io/errors.hpp"
+#include "softsim/material/isochoric_increment.hpp"
 
 namespace softsim::material {
 
@@ -19,7 +20,7 @@ void validate_moduli(const TransverselyIsotropic& law) {
 
 ElasticParameters small_strain_parameters(const TransverselyIsotropic& law, double density) {
   const double mu = law.mu + 4.0 * law.eta / 3.0;
-  return from_lame(mu, law.bulk - 2.0 * mu / 3.0, density);  // λ = K − 2μ/3
+  return from_shear_bulk(mu, law.bulk, density);
 }
 
 double strain_energy_density(const TransverselyIsotropic& law, const Eigen::Matrix3d& F) {
@@ -50,14 +51,9 @@ Eigen::Matrix3d first_piola_increment(const TransverselyIsotropic& law, const Tr
                                       const Eigen::Matrix3d& dF) {
   const Eigen::Matrix3d& F = at.F;
   const Eigen::Vector3d& a = law.fibre;
-  const double J = F.determinant();
-  const Eigen::Matrix3d Finv = F.inverse();
-  const Eigen::Matrix3d FinvT = Finv.transpose();
-  const double t = (Finv * dF).trace();
-  const double dJ = J * t;
-  const double b = std::pow(J, -2.0 / 3.0);
-  const double db = -2.0 / 3.0 * b * t;
-  const Eigen::Matrix3d dFinvT = -FinvT * dF.transpose() * FinvT;
+  const IsochoricIncrement k(F, dF);
+  const double b = k.a, db = k.da;
+  const Eigen::Matrix3d &FinvT = k.FinvT, &dFinvT = k.dFinvT;
   const double I1 = F.squaredNorm(), dI1 = 2.0 * (F.array() * dF.array()).sum();
   const Eigen::Vector3d Fa = F * a, dFa = dF * a;
   const double I4 = Fa.squaredNorm(), dI4 = 2.0 * Fa.dot(dFa);
@@ -66,8 +62,7 @@ Eigen::Matrix3d first_piola_increment(const TransverselyIsotropic& law, const Tr
   const Eigen::Matrix3d G = Fa * a.transpose() - (I4 / 3.0) * FinvT;
   const Eigen::Matrix3d dG = dFa * a.transpose() - (dI4 / 3.0) * FinvT - (I4 / 3.0) * dFinvT;
   const Eigen::Matrix3d fibre = 2.0 * law.eta * ((dd4 * b + d4 * db) * G + d4 * b * dG);
-  const Eigen::Matrix3d vol = law.bulk * ((2.0 * J - 1.0) * dJ * FinvT + J * (J - 1.0) * dFinvT);
-  return matrix + fibre + vol;
+  return matrix + fibre + k.volumetric(law.bulk);
 }
 
 double volumetric_modulus(const TransverselyIsotropic& law) { return law.bulk; }

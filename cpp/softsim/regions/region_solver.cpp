@@ -41,9 +41,9 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
     throw InputError("regions: an implicit-dynamic secondary needs the exchange coupling (001 eq. 7)");
   if (!(options.skip_below >= 0)) throw InputError("regions: skip_below must not be negative");
   const bool exchange = options.coupling == Coupling::exchange;
-  // The primary region's scene: the interface held at the published values (exchange), then the
-  // model's constraints on the primary nodes, which win where both act (a fixed interface node
-  // stays fixed).
+  // The primary region's scene: the interface held at the published values (exchange; constraint
+  // a holds interface node a), then the model's constraints on the primary nodes, which win where
+  // both act (a fixed interface node stays fixed).
   scene_.gravity = model.scene.gravity;
   scene_.gravity_ramp = model.scene.gravity_ramp;
   if (exchange) {
@@ -54,7 +54,6 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
       scene_.constraints.push_back(std::move(c));
     }
   }
-  first_interface_constraint_ = 0;
   for (const auto& c : model.scene.constraints) {
     dynamics::DisplacementConstraint local = c;
     local.nodes.clear();
@@ -108,15 +107,14 @@ void RegionSolver::start_from(const std::vector<double>& u, const std::vector<do
     solver_->set_resumed_state(std::move(now), std::move(before));
   }
   solver_->reset();
-  for (std::size_t a = 0; a < region_.interface.size(); ++a)
-    for (int c = 0; c < 3; ++c) interface_before_[3 * a + c] = interface_last_[3 * a + c] = u_[3 * region_.interface[a] + c];
+  published_interface(interface_last_);
+  interface_before_ = interface_last_;
   if (exchange_) {
     // The interface starts where it is (a moved region takes over its predecessor's values).
     for (std::size_t a = 0; a < region_.interface.size(); ++a)
-      solver_->set_prescribed_displacement(first_interface_constraint_ + static_cast<int>(a),
-                                           Eigen::Vector3d(interface_last_.data() + 3 * a));
+      solver_->set_prescribed_displacement(static_cast<int>(a), Eigen::Vector3d(interface_last_.data() + 3 * a));
+    exchange_->start_at(u_.data());
   }
-  if (exchange_) exchange_->start_at(u_.data());
   last_update_ = stats_.frames;
   input_at_update_.assign(u_.begin(), u_.end());
 }
@@ -141,7 +139,7 @@ void RegionSolver::frame(const std::vector<dynamics::AppliedForce>& forces) {
       Eigen::Vector3d value;
       for (int c = 0; c < 3; ++c)
         value[c] = interface_before_[3 * a + c] + s * (interface_last_[3 * a + c] - interface_before_[3 * a + c]);
-      solver_->set_prescribed_displacement(first_interface_constraint_ + static_cast<int>(a), value);
+      solver_->set_prescribed_displacement(static_cast<int>(a), value);
     }
     solver_->set_applied_forces(applied_);
     solver_->advance(substeps_);
@@ -169,6 +167,11 @@ void RegionSolver::publish_primary() {
   const double* u = solver_->displacement();
   for (std::size_t k = 0; k < region_.nodes.size(); ++k)
     for (int c = 0; c < 3; ++c) u_[3 * region_.nodes[k] + c] = u[3 * k + c];
+}
+
+void RegionSolver::published_interface(std::vector<double>& out) const {
+  for (std::size_t a = 0; a < region_.interface.size(); ++a)
+    for (int c = 0; c < 3; ++c) out[3 * a + c] = u_[3 * region_.interface[a] + c];
 }
 
 void RegionSolver::primary_previous(double* u) const {
@@ -206,8 +209,7 @@ void RegionSolver::secondary_update(bool forced) {
   if (exchange) {
     exchange_->solve(u_.data(), gravity_factor());
     interface_before_ = interface_last_;
-    for (std::size_t a = 0; a < region_.interface.size(); ++a)
-      for (int c = 0; c < 3; ++c) interface_last_[3 * a + c] = u_[3 * region_.interface[a] + c];
+    published_interface(interface_last_);
   } else {
     condensed_->recover(u_.data(), gravity_factor());
   }

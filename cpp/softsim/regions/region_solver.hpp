@@ -95,12 +95,11 @@ class RegionSolver {
   void primary_previous(double* u) const;
   const PrimaryRegion& region() const { return region_; }
   const RegionStats& stats() const { return stats_; }
-  RegionStats& stats() { return stats_; }
-  const dynamics::ExplicitSolver& primary() const { return *solver_; }
-  double time() const { return solver_->time(); }
 
  private:
   void publish_primary();
+  // The published displacement of the interface nodes into `out` (3 per interface node).
+  void published_interface(std::vector<double>& out) const;
   void secondary_update(bool forced = false);
   double gravity_factor() const;
 
@@ -115,10 +114,9 @@ class RegionSolver {
   std::unique_ptr<CondensedSecondary> condensed_;
   std::vector<double> u_;           // global published displacement
   // Exchange: the interface values of the last two secondary updates (3 per interface node) and
-  // the frame of the last one; the interface constraints' indices in scene_.
+  // the frame of the last one.
   std::vector<double> interface_before_, interface_last_;
   long last_update_ = 0;
-  int first_interface_constraint_ = 0;
   // Condensed: the interface displacement and force buffers (3 per interface node).
   std::vector<double> interface_u_, interface_f_;
   std::vector<dynamics::AppliedForce> applied_;  // contact forces (local nodes) + interface forces
