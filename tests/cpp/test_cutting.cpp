@@ -285,6 +285,6 @@ TEST(Cutting, BadCutsAreInputErrorsNamingThePointer) {
                "/cuts/1/time", "ascending");
   expect_error({{{"time", -1}, {"from", edge}, {"to", down}}}, "/cuts/0/time", "non-negative");
   expect_error({{{"time", 0.1}, {"from", {{0, 0}, {1, 1, 1}}}, {"to", down}}}, "/cuts/0/from/0", "point");
-  expect_error({{{"time", 0.1}, {"from", edge}, {"to", down}, {"mode", "separate"}}}, "/cuts/0/mode", "remove");
+  expect_error({{{"time", 0.1}, {"from", edge}, {"to", down}, {"mode", "slice"}}}, "/cuts/0/mode", "separate");
   expect_error({{{"time", 0.1}, {"from", edge}, {"to", down}}}, "/cuts", "explicit", "static");
 }

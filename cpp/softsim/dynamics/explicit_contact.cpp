@@ -42,7 +42,11 @@ void ExplicitSolver::build_contacts(const std::vector<char>& constrained) {
   }
   contact_force_.assign(3 * contacts_.size(), 0.0);
   contact_work_.assign(contacts_.size(), 0.0);
-  // Per tool, its entries (ascending, so by node) for the broad phase.
+  setup_contact_search();
+}
+
+// Per tool, its entries (ascending, so by node) for the broad phase.
+void ExplicitSolver::setup_contact_search() {
   std::vector<std::vector<int>> entries(scene_.tools.size());
   std::vector<int> entry_node(contacts_.size());
   std::vector<Eigen::Vector3d> entry_position(contacts_.size());

@@ -287,7 +287,6 @@ void ExplicitSolver::start() {
 void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const ProgressFn& progress) {
   if (steps < 0) throw InputError("solver: the step count must not be negative");
   if (!started_) start();
-  const int n3 = 3 * n_;
   const int T = opt_.threads;
   const long long target = static_cast<long long>(n_done_) + steps;
   if (target > std::numeric_limits<int>::max()) throw InputError("solver: the step count exceeds the int range");
@@ -409,7 +408,7 @@ void ExplicitSolver::advance(int steps, const SnapshotFn& snapshot, const Progre
         fail_inversion(failed_step, inverted.j, inverted.element);
       }
       int node = -1;
-      for (int q = 0; q < n3 && node < 0; ++q)
+      for (int q = 0; q < 3 * n_ && node < 0; ++q)
         if (!std::isfinite(u[q])) node = q / 3;
       msg << "displacement of node " << node << " is not finite (NaN or overflow); dt = " << step_size(failed_step)
           << " s";
@@ -620,7 +619,6 @@ ExplicitTiming ExplicitSolver::timing() const {
 }
 
 ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot, const ProgressFn& progress) {
-  const int n3 = 3 * n_;
   const double dt = opt_.dt;
   reset();
   ExplicitResult res;
@@ -659,6 +657,7 @@ ExplicitResult ExplicitSolver::run(const SnapshotFn& snapshot, const ProgressFn&
   res.time = time();
   res.step_history = segments_;
 
+  const int n3 = 3 * n_;  // after the steps: a separating cut adds nodes
   res.displacement.assign(displacement(), displacement() + n3);
   res.velocity.resize(n3);
   velocity(res.velocity.data());

@@ -195,6 +195,8 @@ class ExplicitSolver {
   // The step sizes used since the last reset.
   const std::vector<StepSegment>& step_history() const { return segments_; }
   int num_nodes() const { return n_; }
+  // The lumped nodal masses in use (after cuts: what they left).
+  const std::vector<double>& masses() const { return mass_; }
   const ExplicitOptions& options() const { return opt_; }
   const Scene& scene() const { return scene_; }
   // u(time), 3 per node, in place: valid until the next advance() or reset().
@@ -231,6 +233,17 @@ class ExplicitSolver {
   // Permanent: reset() returns to t = 0 with the cut mesh. `mesh`: the element set's mesh.
   CutReport remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements);
   double removed_energy() const { return removed_energy_; }
+
+  // Between steps: a cut by separation along faces (cutting/separation.hpp). Each copy joins
+  // the state as a new node (numbered after all others, in order) with its node's displacement
+  // history u_{n−1}, u_n (so it moves on with the node's velocity), and the lumped masses
+  // ρ⁰V/4 of the moved elements leave the node for the copy: mass, momentum and kinetic energy
+  // are unchanged and nothing is removed. Only the two nodes' coefficients are recomputed; the
+  // copy is updated after the mid-step barrier, and joins every rigid tool its node is listed
+  // for. A node a constraint acts on cannot split (InputError). The stable step cannot shrink:
+  // each element keeps its own mass share at every corner (as for remove_elements).
+  // `mesh`: the element set's mesh after the split.
+  double split_nodes(const mesh::TetMesh& mesh, const std::vector<fem::ElementSet::NodeCopy>& copies);
 
   // ---- rigid tools (Scene::tools): frictionless kinematic contact (explicit_contact.cpp) ----
   // Between steps: tool k's centre sits at `centre` from the next step on, its travel dropped
@@ -281,6 +294,7 @@ class ExplicitSolver {
   StepSegment segment_at(int step) const;
   void fire_due_events();
   void build_contacts(const std::vector<char>& constrained);
+  void setup_contact_search();  // the broad phase over the contact entries
   // After every node's update of step `step`: moves the nodes that entered a tool out of it (see
   // RigidTool) and books the contact work, for the candidates the broad phase lists.
   void contact_pass(int step, const double* up, const double* uc, double* un);

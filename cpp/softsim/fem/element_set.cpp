@@ -103,6 +103,7 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
   }
   incidence_begin_.assign(num_nodes_ + 1, 0);
   for (int n = 0; n < num_nodes_; ++n) incidence_begin_[n + 1] = incidence_begin_[n] + degree[n];
+  incidence_end_.assign(incidence_begin_.begin() + 1, incidence_begin_.end());
   incidence_.resize(incidence_begin_[num_nodes_]);
   std::vector<int> fill(incidence_begin_.begin(), incidence_begin_.end() - 1);
   for (int i = 0; i < stride_; ++i) {
@@ -153,14 +154,71 @@ std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const st
   // stored order (a removed element keeps its entry with weight 0).
   std::sort(anp_nodes.begin(), anp_nodes.end());
   anp_nodes.erase(std::unique(anp_nodes.begin(), anp_nodes.end()), anp_nodes.end());
-  for (int a : anp_nodes) {
-    double v = 0;
-    for (int p = anp_.begin[a]; p < anp_.begin[a + 1]; ++p) v += 0.25 * volume_[anp_.element[p]];
-    anp_.volume[a] = v;
-    for (int p = anp_.begin[a]; p < anp_.begin[a + 1]; ++p)
-      anp_.weight[p] = v > 0 ? 0.25 * volume_[anp_.element[p]] / v : 0.0;
-  }
+  for (int a : anp_nodes) reweigh_nodal_volume(a);
   return done;
+}
+
+// V_a = Σ ⁰V_e / 4 over the ANP elements still at node a (a removed one has ⁰V = 0; one a split
+// moved away no longer has a as a corner) and w_ae = ⁰V_e / (4 V_a), in the stored order.
+void ElementSet::reweigh_nodal_volume(int a) {
+  const auto share = [&](int slot) {
+    for (const auto& offset : node_offset_)
+      if (offset[slot] == 3 * a) return 0.25 * volume_[slot];
+    return 0.0;
+  };
+  double v = 0;
+  for (int p = anp_.begin[a]; p < anp_.begin[a + 1]; ++p) v += share(anp_.element[p]);
+  anp_.volume[a] = v;
+  for (int p = anp_.begin[a]; p < anp_.begin[a + 1]; ++p) anp_.weight[p] = v > 0 ? share(anp_.element[p]) / v : 0.0;
+}
+
+void ElementSet::split_nodes(const mesh::TetMesh& mesh, const std::vector<NodeCopy>& copies) {
+  for (std::size_t k = 0; k < copies.size(); ++k) {
+    const NodeCopy& c = copies[k];
+    if (c.copy != num_nodes_ + static_cast<int>(k) || c.copy >= mesh.num_nodes())
+      throw std::invalid_argument("ElementSet::split_nodes: copies must be numbered after the nodes, in order");
+    for (int e : c.elements)
+      if (kinds_[e] == ElementKind::linear && assembled_linear())
+        throw std::invalid_argument("ElementSet::split_nodes: element " + std::to_string(e) +
+                                    " is an assembled linear element (build the set with per-element linear forces)");
+  }
+  for (const NodeCopy& c : copies) {
+    ++num_nodes_;
+    const auto moved = [&](int slot) { return std::binary_search(c.elements.begin(), c.elements.end(), original_[slot]); };
+    for (int e : c.elements) {
+      const int i = slot_of_[e];
+      for (auto& offset : node_offset_)
+        if (offset[i] == 3 * c.node) offset[i] = 3 * c.copy;
+    }
+    // The node keeps the corners that stay, in their order; the copy's follow at the end.
+    const int copy_begin = static_cast<int>(incidence_.size());
+    int keep = incidence_begin_[c.node];
+    for (int p = incidence_begin_[c.node]; p < incidence_end_[c.node]; ++p) {
+      const int o = incidence_[p];
+      if (moved(o % stride_)) incidence_.push_back(o);
+      else incidence_[keep++] = o;
+    }
+    incidence_end_[c.node] = keep;
+    incidence_begin_.resize(c.copy);  // drops the set-up's end sentinel: ranges are [begin, end) now
+    incidence_begin_.push_back(copy_begin);
+    incidence_end_.push_back(static_cast<int>(incidence_.size()));
+    first_tile_.push_back(num_tiles_ - 1);
+    if (assembled_linear()) linear_force_.resize(3 * static_cast<std::size_t>(num_nodes_), 0.0);
+    if (has_nodal_pressure()) {
+      // The copy's entries follow at the end; the node keeps the moved ones at weight 0.
+      anp_.begin.push_back(anp_.begin.back());
+      for (int p = anp_.begin[c.node]; p < anp_.begin[c.node + 1]; ++p)
+        if (moved(anp_.element[p])) {
+          anp_.element.push_back(anp_.element[p]);
+          anp_.weight.push_back(0.0);
+          ++anp_.begin.back();
+        }
+      anp_.volume.push_back(0.0);
+      reweigh_nodal_volume(c.node);
+      reweigh_nodal_volume(c.copy);
+      nodal_pressure_.resize(3 * static_cast<std::size_t>(num_nodes_), 0.0);
+    }
+  }
 }
 
 void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
@@ -243,7 +301,7 @@ void ElementSet::build_tiles(const std::vector<int>& key, int tile_nodes) {
   first_tile_.assign(num_nodes_, 0);
   for (int n = 0; n < num_nodes_; ++n) {
     int lo = num_tiles_, hi = 0;
-    for (int p = incidence_begin_[n]; p < incidence_begin_[n + 1]; ++p) {
+    for (int p = incidence_begin_[n]; p < incidence_end_[n]; ++p) {
       const int t = slot_tile[incidence_[p] % stride_];
       lo = std::min(lo, t);
       hi = std::max(hi, t);

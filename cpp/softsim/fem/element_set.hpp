@@ -109,7 +109,7 @@ class ElementSet {
     const double* __restrict bx = buffer_.data();
     const double* __restrict by = bx + stride_;
     const double* __restrict bz = by + stride_;
-    for (int p = incidence_begin_[node], e = incidence_begin_[node + 1]; p < e; ++p) {
+    for (int p = incidence_begin_[node], e = incidence_end_[node]; p < e; ++p) {
       const std::size_t o = static_cast<unsigned>(incidence_[p]);
       fx += bx[o];
       fy += by[o];
@@ -178,6 +178,23 @@ class ElementSet {
   bool removed(int element) const { return removed_[element] != 0; }
   int num_removed() const { return num_removed_; }
 
+  // ---- cutting by separation along faces (cutting/separation.hpp) ----
+  // A node split: `copy` (numbered after every node so far, in order) takes over `node` as a
+  // corner of `elements`. A local update: the moved slots' corners point at the copy, their
+  // incident corner forces leave the node's gather list for the copy's (appended), and ANP
+  // elements move their nodal-volume share (a moved element keeps a zero-weight entry at the
+  // node, as a removed one does). Shape gradients, volumes and tiles are untouched: a copy has
+  // its node's reference position. A copy is ready in no tile; its owner updates it once the
+  // whole element phase is done. Assembled linear elements cannot move (their rows' pattern
+  // would change): a set built for separation computes them per element (LinearForces).
+  // `mesh`: the set's mesh after the split (the copies appended, the elements re-pointed).
+  struct NodeCopy {
+    int node = 0;
+    int copy = 0;
+    std::vector<int> elements;
+  };
+  void split_nodes(const mesh::TetMesh& mesh, const std::vector<NodeCopy>& copies);
+
  private:
   void compute_group(const Group& g, const double* u, int begin, int end, KernelStats& stats,
                      const StepClock& clock);
@@ -186,6 +203,7 @@ class ElementSet {
   void compute_linear_rows(const double* u, const int* node_begin, const int* node_end);
   void build_tiles(const std::vector<int>& key, int tile_nodes);
   void build_nodal_pressure(const mesh::TetMesh& mesh);
+  void reweigh_nodal_volume(int node);
   kernels::SoaView view();
 
   int num_nodes_ = 0;
@@ -216,8 +234,10 @@ class ElementSet {
   // Assembled linear rows and, per node, the row force of the current element phase.
   LinearStiffnessRows linear_rows_;
   AlignedVector<double> linear_force_;
-  std::vector<int> incidence_begin_;
-  std::vector<int> incidence_;  // buffer offset of the x component of each incident corner
+  // Per node, its incident corners' buffer offsets (x component) are incidence_[begin, end): a
+  // node's range only shrinks when a split moves corners away; a copy's range is appended.
+  std::vector<int> incidence_begin_, incidence_end_;
+  std::vector<int> incidence_;
   int num_tiles_ = 1;
   std::vector<std::pair<int, int>> tile_blocks_;  // [tile * groups + group] -> slot range
   std::vector<int> first_tile_;                   // per node

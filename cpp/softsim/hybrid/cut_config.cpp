@@ -31,7 +31,7 @@ std::vector<CutSpec> read_cuts(const io::JsonReader& config, const mesh::TetMesh
     cut.time = c.get_double("time");
     c.require(cut.time >= 0, "time", "a non-negative time (s)");
     if (!cuts.empty()) c.require(cut.time >= cuts.back().time, "time", "cut times in ascending order");
-    c.get_choice("mode", {"remove"}, "remove");
+    cut.mode = c.get_choice("mode", {"remove", "separate"}, "remove") == "separate" ? CutMode::separate : CutMode::remove;
     read_edge(c, "from", cut.sweep.a0, cut.sweep.b0);
     read_edge(c, "to", cut.sweep.a1, cut.sweep.b1);
     const std::string problem = cutting::sweep_problem(cut.sweep);

@@ -1,9 +1,11 @@
 #pragma once
-// The "cuts" of a dhd_sim config (issue 19, cutting by element removal):
+// The "cuts" of a dhd_sim config (issue 19):
 //   "cuts": [{"time": t, "from": [[ax, ay, az], [bx, by, bz]], "to": [[...], [...]],
-//             "mode": "remove"}, ...]
-// At time t (s) the blade edge a–b sweeps from its `from` position to its `to` position, and
-// the elements the swept surface crosses in the deformed geometry are removed.
+//             "mode": "remove" | "separate"}, ...]
+// At time t (s) the blade edge a–b sweeps from its `from` position to its `to` position. With
+// "remove" (the default) the elements the swept surface crosses in the deformed geometry are
+// removed; with "separate" the mesh opens along the faces nearest the swept surface by
+// duplicating nodes (cutting/separation.hpp), and nothing is removed.
 #include <vector>
 
 #include "softsim/cutting/blade.hpp"
@@ -12,9 +14,12 @@
 
 namespace softsim::hybrid {
 
+enum class CutMode { remove, separate };
+
 struct CutSpec {
   double time = 0;
   cutting::BladeSweep sweep;
+  CutMode mode = CutMode::remove;
 };
 
 // Reads and checks config["cuts"] (absent: none): times non-negative and ascending, each sweep

@@ -489,6 +489,7 @@ DhdConfig read_dhd_config(const io::JsonReader& cfg, const mesh::TetMesh& mesh) 
   cfg.require(c.threads >= 1 && c.threads <= 256, "threads", "a thread count between 1 and 256");
   read_bench(cfg, mesh, c);
   c.cuts = read_cuts(cfg, mesh);
+  for (const auto& cut : c.cuts) c.separates = c.separates || cut.mode == CutMode::separate;
   if (!c.cuts.empty() && c.static_solver) cfg.fail_member("cuts", "an explicit solver (a cut is an event in time)");
   if (!c.scene.tools.empty() && c.static_solver)
     cfg.at("boundary").fail_member("tools", "an explicit solver (rigid-tool contact is solved by the explicit engine)");

@@ -78,6 +78,11 @@ struct DhdConfig {
   int threads = 1;
   BenchConfig bench;
   std::vector<CutSpec> cuts;  // explicit runs only
+  // Whether the scene may separate along faces (a "separate" cut, or a haptic blade that does):
+  // the scene then owns a copy of its mesh, which cuts change, and computes its linear elements
+  // element by element (fem::LinearForces::per_element), since an assembled row's pattern
+  // cannot follow a node split.
+  bool separates = false;
 };
 
 // A 3-vector member [x, y, z] of a config object (the scene readers built on this one use it too).

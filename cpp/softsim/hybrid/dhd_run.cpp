@@ -56,7 +56,7 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
     run.small_strain = check.record();
   } else {
     run.step = scene.step_choice();
-    SmallStrainCheck check(mesh, scene.kinds());
+    SmallStrainCheck check(scene.mesh(), scene.kinds());  // the scene's: separating cuts re-point elements
     const auto removed = [&](int e) { return scene.removed(e); };
     run.explicit_result = scene.run(snapshot, [&](int steps_done, double time) {
       check.observe(scene.displacement(), time, removed);
@@ -68,6 +68,7 @@ DhdRun run_dhd(const mesh::TetMesh& mesh, const DhdConfig& c, std::vector<fem::E
     for (const auto& ev : run.cuts)
       run.removed_elements.insert(run.removed_elements.end(), ev.report.elements.begin(), ev.report.elements.end());
     std::sort(run.removed_elements.begin(), run.removed_elements.end());
+    if (c.separates) run.cut_mesh = scene.mesh_ptr();
   }
   run.kinds = scene.kinds();
   return run;
@@ -217,9 +218,21 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                       {"loose_pieces", ev.loose_pieces},
                       {"search_seconds", ev.search_seconds},
                       {"update_seconds", ev.report.seconds},
-                      {"pieces_seconds", ev.pieces_seconds}});
+                      {"pieces_seconds", ev.pieces_seconds},
+                      {"mode", ev.mode == CutMode::separate ? "separate" : "remove"},
+                      {"faces_opened", ev.faces},
+                      {"node_copies", ev.copies.size()},
+                      {"held_nodes_kept", ev.held_nodes_kept},
+                      {"separation_seconds", ev.separation_seconds}});
     p["cuts"] = cuts;
     p["removed_elements"] = run.removed_elements;
+    if (c.separates) {
+      // Node copies in the order they were made: copy k is node num_nodes + k of the mesh given.
+      nlohmann::json copies = nlohmann::json::array();
+      for (const auto& ev : run.cuts)
+        for (const auto& [node, copy] : ev.copies) copies.push_back({node, copy});
+      p["node_copies"] = copies;
+    }
   }
   if (!c.output.trajectory_nodes.empty()) {
     nlohmann::json disp = nlohmann::json::array();

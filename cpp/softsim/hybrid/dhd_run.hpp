@@ -33,6 +33,9 @@ struct DhdRun {
   double solve_seconds = 0;  // static runs: wall time of solve_static (0 for explicit runs)
   std::vector<DhdScene::CutEvent> cuts;  // the cut events of the run (config "cuts")
   std::vector<int> removed_elements;     // every element the cuts removed, ascending
+  // The mesh separating cuts left (their node copies appended, elements re-pointed); null when
+  // no cut separates. Displacements of the run have one entry per node of this mesh.
+  std::shared_ptr<const mesh::TetMesh> cut_mesh;
   // The largest deformation of a small-strain element (000 §2.2.2's 10 % condition), over the
   // states between chunks of explicit steps and the final one (static: the solution).
   SmallStrainRecord small_strain;

@@ -30,6 +30,11 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     : mesh_(std::move(mesh)), config_(std::move(config)), kinds_(std::move(kinds)) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
+  if (config_.separates && !config_.static_solver) {
+    auto own = std::make_shared<mesh::TetMesh>(*mesh_);
+    cut_mesh_ = own.get();
+    mesh_ = std::move(own);
+  }
   if (static_cast<int>(kinds_.size()) != mesh_->num_tets())
     throw InputError("partition: " + std::to_string(kinds_.size()) + " element kinds for " +
                      std::to_string(mesh_->num_tets()) + " tetrahedra");
@@ -43,7 +48,9 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     }
     step_ = dynamics::choose_time_step(limit, config_.explicit_solver.dt, config_.explicit_solver.safety_factor,
                                        config_.explicit_solver.force_dt);
-    elements_ = std::make_unique<fem::ElementSet>(*mesh_, kinds_, config_.material);
+    elements_ = std::make_unique<fem::ElementSet>(
+        *mesh_, kinds_, config_.material, 128,
+        config_.separates ? fem::LinearForces::per_element : fem::LinearForces::assembled);
     // The critical step of the deformed mesh: TLED and ANP stiffness follows the deformation,
     // small-strain and corotational stiffness does not. Nor does an inversion-robust law's in the
     // sense of 000 eq. 34: its tangent on the reference gradients stays bounded as an element
@@ -66,7 +73,7 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     options.step_check_interval = std::max(config_.explicit_solver.dt_check_interval, 1);
     options.elements_removed = [d = deformed_step_.get()](const std::vector<int>& e) { d->remove(e); };
     for (const auto& c : config_.cuts) options.event_times.push_back(c.time);
-    options.on_event = [this](int k) { cut(config_.cuts[k].sweep); };
+    options.on_event = [this](int k) { cut(config_.cuts[k].sweep, config_.cuts[k].mode); };
     solver_ = std::make_unique<dynamics::ExplicitSolver>(
         *elements_, dynamics::lumped_mass(*mesh_, config_.material.elastic.density), config_.scene, options);
   }
@@ -107,7 +114,7 @@ dynamics::ExplicitResult DhdScene::run(const dynamics::SnapshotFn& snapshot, con
   return solver().run(snapshot, progress);
 }
 
-DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
+DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode) {
   using Clock = std::chrono::steady_clock;
   const std::string problem = cutting::sweep_problem(sweep);
   if (!problem.empty()) throw InputError("cut: expected " + problem);
@@ -118,9 +125,12 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
       for (int node : c.nodes) held_[node] = 1;
   }
   if (!cut_grid_) cut_grid_ = std::make_unique<cutting::ElementGrid>(*mesh_);
+  if (mode == CutMode::separate && !cut_mesh_)
+    throw InputError("cut: separation along faces needs a scene set up for it (a \"separate\" cut in the config)");
   CutEvent ev;
   ev.time = s.time();
   ev.step = s.steps_done();
+  ev.mode = mode;
   const auto t0 = Clock::now();
   const std::vector<int> crossed =
       cutting::elements_crossed(*mesh_, s.displacement(), sweep, *cut_grid_, cut_candidates_,
@@ -131,7 +141,12 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
     ev.loose_pieces = cut_events_.empty() ? 0 : cut_events_.back().loose_pieces;
     return ev;
   }
-  ev.report = s.remove_elements(*mesh_, crossed);
+  if (mode == CutMode::separate) {
+    ev = separate(sweep, ev, crossed);
+    if (ev.faces == 0) return ev;
+  } else {
+    ev.report = s.remove_elements(*mesh_, crossed);
+  }
   const auto t1 = Clock::now();
   const cutting::Pieces pieces = cutting::find_pieces(
       *mesh_, [&](int e) { return elements_->removed(e); }, [&](int node) { return held_[node] != 0; });
@@ -139,6 +154,31 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
   ev.pieces = pieces.count;
   ev.loose_pieces = static_cast<int>(pieces.loose.size());
   cut_events_.push_back(ev);
+  return ev;
+}
+
+// The faces between the elements on either side of the sweep open, by node copies: the plan
+// (which faces, which nodes), then the mesh, then the engine, each a local update.
+DhdScene::CutEvent DhdScene::separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  if (!topology_) topology_ = std::make_unique<cutting::FaceTopology>(*mesh_);
+  const auto removed = [&](int e) { return elements_->removed(e); };
+  const auto held = [&](int node) { return node < static_cast<int>(held_.size()) && held_[node] != 0; };
+  const cutting::SeparationPlan plan =
+      cutting::plan_separation(*mesh_, solver().displacement(), sweep, crossed, *topology_, removed, held);
+  ev.faces = static_cast<int>(plan.faces.size());
+  ev.held_nodes_kept = plan.held_nodes_kept;
+  if (plan.empty()) return ev;
+  boundary_change_ = cutting::apply_separation(*cut_mesh_, *topology_, plan);
+  std::vector<fem::ElementSet::NodeCopy> copies;
+  for (const auto& split : plan.splits) {
+    copies.push_back({split.node, split.copy, split.elements});
+    ev.copies.push_back({split.node, split.copy});
+  }
+  solver().split_nodes(*mesh_, copies);
+  held_.resize(mesh_->num_nodes(), 0);
+  ev.separation_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return ev;
 }
 

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "softsim/cutting/blade.hpp"
+#include "softsim/cutting/separation.hpp"
 #include "softsim/dynamics/explicit_solver.hpp"
 #include "softsim/dynamics/spectral_step.hpp"
 #include "softsim/dynamics/stable_step.hpp"
@@ -32,7 +33,9 @@ class DhdScene {
   DhdScene(const DhdScene&) = delete;
   DhdScene& operator=(const DhdScene&) = delete;
 
+  // The scene's mesh: with separating cuts a copy the cuts change (node copies appended).
   const mesh::TetMesh& mesh() const { return *mesh_; }
+  std::shared_ptr<const mesh::TetMesh> mesh_ptr() const { return mesh_; }
   const DhdConfig& config() const { return config_; }
   const std::vector<fem::ElementKind>& kinds() const { return kinds_; }
   // 000 eq. 34's Δt_cr on the smallest altitude, always; with solver.critical_step
@@ -73,11 +76,18 @@ class DhdScene {
   // The whole configured run (config.explicit_solver.steps steps from t = 0), as dhd_sim runs it.
   dynamics::ExplicitResult run(const dynamics::SnapshotFn& snapshot = {}, const dynamics::ProgressFn& progress = {});
 
-  // ---- cutting by element removal ----
+  // ---- cutting: element removal, or separation along faces ----
   struct CutEvent {
     double time = 0;
     int step = 0;
-    dynamics::CutReport report;  // what left, and the engine's local update time
+    CutMode mode = CutMode::remove;
+    dynamics::CutReport report;  // what left, and the engine's local update time (removal)
+    // Separation: the faces that opened, each split as (node, copy), the nodes of cut faces a
+    // constraint holds (not split), and the time of the mesh and engine updates.
+    int faces = 0;
+    std::vector<std::array<int, 2>> copies;
+    int held_nodes_kept = 0;
+    double separation_seconds = 0;
     int pieces = 0;              // connected pieces left after the cut
     int loose_pieces = 0;        // of them, held by no constraint
     double search_seconds = 0;   // finding the crossed elements
@@ -87,8 +97,12 @@ class DhdScene {
   // (ExplicitSolver::remove_elements). The config's "cuts" call it at their times. A sweep
   // that removes something is kept in cut_events(); the returned event also says what an empty
   // one cost (its search).
-  CutEvent cut(const cutting::BladeSweep& sweep);
+  // With CutMode::separate the mesh opens along the faces nearest the sweep instead
+  // (cutting/separation.hpp; the config must allow it: DhdConfig::separates).
+  CutEvent cut(const cutting::BladeSweep& sweep, CutMode mode = CutMode::remove);
   const std::vector<CutEvent>& cut_events() const { return cut_events_; }
+  // What the last separating cut did to the mesh's boundary triangles (for a contact surface).
+  const cutting::BoundaryChange& last_boundary_change() const { return boundary_change_; }
   bool removed(int element) const { return elements_ && elements_->removed(element); }
 
   // ---- static equilibrium of the same model (000 eq. 24) ----
@@ -96,6 +110,7 @@ class DhdScene {
 
  private:
   std::shared_ptr<const mesh::TetMesh> mesh_;
+  mesh::TetMesh* cut_mesh_ = nullptr;  // mesh_ itself when the scene separates (a copy it owns)
   DhdConfig config_;
   std::vector<fem::ElementKind> kinds_;
   dynamics::CriticalStep critical_;
@@ -107,6 +122,9 @@ class DhdScene {
   std::vector<char> held_;  // per node: some constraint holds it (for loose pieces)
   std::unique_ptr<cutting::ElementGrid> cut_grid_;  // built at the first cut: the blade's local search
   std::vector<int> cut_candidates_;
+  std::unique_ptr<cutting::FaceTopology> topology_;  // built at the first separating cut
+  cutting::BoundaryChange boundary_change_;
+  CutEvent separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed);
   std::unique_ptr<dynamics::ExplicitSolver> solver_;
   double setup_seconds_ = 0;
 };

@@ -66,8 +66,17 @@ std::string snapshot_path(const std::string& vtu, int step) {
 std::string series_path(const std::string& vtu) { return stem_of(vtu) + ".pvd"; }
 
 VtuOutput::VtuOutput(const mesh::TetMesh& mesh, const std::vector<fem::ElementKind>& kinds, const DhdConfig& config)
-    : output_(config.output), has_cuts_(!config.cuts.empty()) {
+    : kinds_(kinds), material_(config.material), output_(config.output), has_cuts_(!config.cuts.empty()) {
   if (!output_.vtu.empty()) writer_.emplace(mesh, kinds, config.material, output_.vtu_format);
+  written_nodes_ = mesh.num_nodes();
+}
+
+ResultVtu& VtuOutput::writer_for(const mesh::TetMesh& mesh) {
+  if (mesh.num_nodes() != written_nodes_) {
+    writer_.emplace(mesh, kinds_, material_, output_.vtu_format);
+    written_nodes_ = mesh.num_nodes();
+  }
+  return *writer_;
 }
 
 dynamics::SnapshotFn VtuOutput::snapshot() {
@@ -79,7 +88,7 @@ dynamics::SnapshotFn VtuOutput::snapshot() {
 
 void VtuOutput::write_snapshot(int step, double time, const std::vector<double>& u, const std::vector<double>& v) {
   const std::string path = snapshot_path(output_.vtu, step);
-  writer_->write(path, u, v, removed());
+  (scene_ ? writer_for(scene_->mesh()) : *writer_).write(path, u, v, removed());
   // The .pvd sits beside the snapshots and names them relative to itself.
   series_.push_back({time, std::filesystem::path(path).filename().string()});
   io::write_pvd(series_path(output_.vtu), series_);
@@ -94,7 +103,8 @@ void VtuOutput::write_final(const DhdRun& run) {
   const std::function<bool(int)> removed =
       has_cuts_ ? std::function<bool(int)>([&gone](int e) { return std::binary_search(gone.begin(), gone.end(), e); })
                 : std::function<bool(int)>();
-  writer_->write(output_.vtu, u, run.explicit_result ? run.explicit_result->velocity : kNoVelocity, removed);
+  (run.cut_mesh ? writer_for(*run.cut_mesh) : *writer_)
+      .write(output_.vtu, u, run.explicit_result ? run.explicit_result->velocity : kNoVelocity, removed);
 }
 
 std::function<bool(int)> VtuOutput::removed() const {

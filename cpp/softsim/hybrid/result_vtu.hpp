@@ -63,7 +63,12 @@ class VtuOutput {
   void write_snapshot(int step, double time, const std::vector<double>& u, const std::vector<double>& v);
 
   std::function<bool(int)> removed() const;
+  // The writer for `mesh` (rebuilt when separating cuts have added nodes since the last write).
+  ResultVtu& writer_for(const mesh::TetMesh& mesh);
 
+  std::vector<fem::ElementKind> kinds_;
+  fem::Material material_;
+  int written_nodes_ = 0;  // nodes of the mesh the writer was built for
   OutputConfig output_;
   bool has_cuts_ = false;
   const DhdScene* scene_ = nullptr;
