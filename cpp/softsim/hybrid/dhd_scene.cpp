@@ -107,7 +107,7 @@ dynamics::ExplicitResult DhdScene::run(const dynamics::SnapshotFn& snapshot, con
   return solver().run(snapshot, progress);
 }
 
-DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
+DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, const double* u) {
   using Clock = std::chrono::steady_clock;
   const std::string problem = cutting::sweep_problem(sweep);
   if (!problem.empty()) throw InputError("cut: expected " + problem);
@@ -123,7 +123,7 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep) {
   ev.step = s.steps_done();
   const auto t0 = Clock::now();
   const std::vector<int> crossed =
-      cutting::elements_crossed(*mesh_, s.displacement(), sweep, *cut_grid_, cut_candidates_,
+      cutting::elements_crossed(*mesh_, u ? u : s.displacement(), sweep, *cut_grid_, cut_candidates_,
                                 [&](int e) { return elements_->removed(e); });
   ev.search_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (crossed.empty()) {  // a sweep through cut space or beside the organ: nothing changes

@@ -87,7 +87,9 @@ class DhdScene {
   // (ExplicitSolver::remove_elements). The config's "cuts" call it at their times. A sweep
   // that removes something is kept in cut_events(); the returned event also says what an empty
   // one cost (its search).
-  CutEvent cut(const cutting::BladeSweep& sweep);
+  // `u` (3 per node): the geometry to cut in when the model is not the one stepped (the linked
+  // regions publish it); null: the model's own.
+  CutEvent cut(const cutting::BladeSweep& sweep, const double* u = nullptr);
   const std::vector<CutEvent>& cut_events() const { return cut_events_; }
   bool removed(int element) const { return elements_ && elements_->removed(element); }
 
