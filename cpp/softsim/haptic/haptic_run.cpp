@@ -132,7 +132,8 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
                     {"elements_removed", ev.report.elements.size()},
                     {"pieces", ev.pieces},
                     {"loose_pieces", ev.loose_pieces},
-                    {"seconds", ev.search_seconds + ev.report.seconds + ev.pieces_seconds}});
+                    {"seconds", ev.search_seconds + ev.report.seconds + ev.pieces_seconds},
+                    {"update_seconds", ev.report.seconds}});
   double mean_seconds = 0;
   for (double x : record.compute_seconds) mean_seconds += x;
   if (!record.compute_seconds.empty()) mean_seconds /= double(record.compute_seconds.size());

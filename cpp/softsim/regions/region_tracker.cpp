@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "softsim/cutting/pieces.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/io/errors.hpp"
 
@@ -64,9 +65,24 @@ void RegionTracker::update_linear() {
   std::vector<char> constrained = dynamics::constrained_mask(dynamics::resolve_constraints(model_.scene, n), n);
   for (int i = 0; i < n; ++i)
     if (masses_[i] == 0) constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
+  const bool cut = std::find(removed_.begin(), removed_.end(), 1) != removed_.end();
+  if (cut) {
+    // A piece the cut detached is held by nothing: quasi-statically it has no position, and the
+    // secondary's system would be singular. The linear model holds it at rest (the explicit
+    // primary region still moves whatever of it lies there).
+    std::vector<char> held(n, 0);
+    for (const auto& c : model_.scene.constraints)
+      for (int i : c.nodes) held[i] = 1;
+    const cutting::Pieces pieces =
+        cutting::find_pieces(*mesh_, [&](int e) { return removed_[e] != 0; }, [&](int i) { return held[i] != 0; });
+    std::vector<char> loose(pieces.count, 0);
+    for (int k : pieces.loose) loose[k] = 1;
+    for (int i = 0; i < n; ++i)
+      if (pieces.node_piece[i] >= 0 && loose[pieces.node_piece[i]])
+        constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
+  }
   Eigen::VectorXd gravity = Eigen::VectorXd::Zero(3 * n);
   for (int i = 0; i < n; ++i) gravity.segment<3>(3 * i) = masses_[i] * model_.scene.gravity;
-  const bool cut = std::find(removed_.begin(), removed_.end(), 1) != removed_.end();
   linear_ = std::make_shared<LinearModel>(*mesh_, model_.material, std::move(constrained),
                                           std::move(gravity), masses_, model_.damping_alpha,
                                           cut ? removed_ : std::vector<char>());
