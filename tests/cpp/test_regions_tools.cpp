@@ -185,6 +185,19 @@ TEST(RegionsWithACut, ACutReachingTheSecondaryRebuildsItAndTheSettledForceIsTheW
   ASSERT_GT(expected.z(), 0.1);
   EXPECT_LT((rr.force.back() - expected).norm(), 1e-6 * expected.norm())
       << rr.force.back().transpose() << " vs " << expected.transpose();
+  // 001 eq. 7's exchange is rebuilt the same way and settles on the same force.
+  auto exchange = spring_options(0.03);
+  exchange.regions.coupling = regions::Coupling::exchange;
+  exchange.regions.secondary_every = 5;
+  exchange.regions.interpolate = false;
+  haptic::HapticScene re(b.mesh, b.config(40, "linear"), exchange);
+  re.prepare(path.at(0));
+  re.cut(sweep);
+  EXPECT_EQ(re.regions()->topology_stats().rebuilds, 1);
+  const auto rx = haptic::run_haptic(re, path, 4000);
+  ASSERT_TRUE(re.events().empty());
+  EXPECT_LT((rx.force.back() - expected).norm(), 1e-4 * expected.norm())
+      << rx.force.back().transpose() << " vs " << expected.transpose();
 }
 
 // The condensed interface on a cut mesh, statically: the primary region's stiffness plus the
