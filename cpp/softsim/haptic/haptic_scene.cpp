@@ -150,8 +150,9 @@ void HapticScene::cut_with_blade(const Eigen::Vector3d& probe) {
 
 void HapticScene::follow_cuts() {
   const auto& events = model_->cut_events();
-  for (; cuts_seen_ < events.size(); ++cuts_seen_) {
-    const auto& gone = events[cuts_seen_].report.elements;
+  // Counted before the regions react: a rebuild that fails (a numerical event) is not retried.
+  while (cuts_seen_ < events.size()) {
+    const auto& gone = events[cuts_seen_++].report.elements;
     surface_.remove_elements(gone, [this](int e) { return model_->removed(e); });
     if (regions_) regions_->topology_changed({gone, {}});
   }

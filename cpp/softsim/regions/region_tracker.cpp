@@ -258,12 +258,13 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     std::vector<double> u(active_->displacement(), active_->displacement() + rest_.size());
     std::vector<double> u_before = u;
     active_->primary_previous(u_before.data());
-    add(retired_, active_->stats(), active_from_);
     const auto t0 = Clock::now();
     update_linear();
     const double linear_seconds = seconds_since(t0);
     double build_seconds = 0;
-    it->second.solver = build(centre_, active_level_, build_seconds);
+    auto rebuilt = build(centre_, active_level_, build_seconds);  // may fail: the old region stays
+    add(retired_, active_->stats(), active_from_);
+    it->second.solver = std::move(rebuilt);
     it->second.linear = linear_;
     active_ = it->second.solver.get();
     active_->start_from(u, u_before);
