@@ -1,6 +1,7 @@
 // Linked regions with rigid tools and cuts: a primary region covering the mesh is the whole
 // model with the same tool or the same cut, to round-off; a tool whose contact spreads past the
-// primary region grows it, and the settled force is the whole model's (no contact force lost);
+// primary region grows it, and the settled force is the whole model's (no contact force lost); a
+// contact found outside the primary interior is counted and the region takes the node in;
 // a cut inside the primary region is the engine's local update, one reaching the secondary
 // region rebuilds it, after which the condensed response equals the whole cut linear model's.
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "softsim/io/json_reader.hpp"
 #include "softsim/regions/dof_blocks.hpp"
 #include "softsim/regions/primary_region.hpp"
+#include "softsim/regions/region_tracker.hpp"
 #include "softsim/regions/secondary_region.hpp"
 
 #include "support/haptic_block.hpp"
@@ -123,6 +125,37 @@ TEST(RegionsWithATool, AToolTouchingNodesOutsideThePrimaryGrowsItAndLosesNoForce
   EXPECT_LT((rr.force.back() - expected).norm(), 1e-4 * expected.norm())
       << rr.force.back().transpose() << " vs " << expected.transpose();
   EXPECT_EQ(whole.model().solver().tool_contacts(0), regions.regions()->tool_contacts(0));
+}
+
+// A node in contact outside the primary interior is detected and counted, and covering it moves
+// and grows the region until the node and the rest of the contact set are interior.
+TEST(RegionsWithATool, AContactOutsideThePrimaryIsCountedAndTheRegionTakesItIn) {
+  Block b;
+  const mesh::TetMesh& m = *b.mesh;
+  auto nearest = [&](const Eigen::Vector3d& x) {
+    int best = 0;
+    for (int i = 0; i < m.num_nodes(); ++i)
+      if ((m.nodes[i] - x).norm() < (m.nodes[best] - x).norm()) best = i;
+    return best;
+  };
+  const auto config = with_sphere(b, 15, 0.01);
+  regions::RegionOptions options;
+  options.radius = 0.01;
+  regions::RegionTracker tracker(m, config, std::vector<fem::ElementKind>(m.num_tets(), fem::ElementKind::tled), 1e-3,
+                                 1, options);
+  const int centre = nearest(kTop), far = nearest({0.09, 0.05, 0.05});
+  tracker.follow({centre, centre, centre}, Eigen::Vector3d(1, 0, 0), 0);
+  ASSERT_TRUE(tracker.active()->interior(centre));
+  ASSERT_FALSE(tracker.active()->interior(far));
+  EXPECT_EQ(tracker.count_late_contacts({centre}), 0);
+  EXPECT_EQ(tracker.count_late_contacts({centre, far}), 1);
+  EXPECT_EQ(tracker.builds().late_contacts, 1);
+  tracker.cover({centre, far}, 1);
+  EXPECT_TRUE(tracker.active()->interior(centre));
+  EXPECT_TRUE(tracker.active()->interior(far));
+  EXPECT_GT(tracker.active_radius(), options.radius);
+  EXPECT_EQ(tracker.builds().tool_covers, 1);
+  EXPECT_EQ(tracker.count_late_contacts({centre, far}), 0);
 }
 
 // A cut at the full rate: the region covering the mesh makes it by the same local update as the
