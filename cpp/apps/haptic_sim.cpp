@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
       "            | {\"kind\": \"chirp\", \"start\", \"direction\", \"amplitude\": m, \"start_frequency\": Hz, \"end_frequency\": Hz, \"sweep_time\": s}\n"
       "            | {\"kind\": \"recorded\", \"path\": \"file of lines t x y z\"},\n"
       "   \"regions\": {\"radius\": m, \"coupling\": \"condensed\"|\"exchange\", \"secondary_every\": 10, \"interpolate\": true,\n"
-      "               \"skip_below\": 0 m, \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
+      "               \"skip_below\": 0 m, \"tool_margin\": m (contact tool), \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
       "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s,\n"
       "                 \"visual\": {\"path\": FILE, \"every\": 33}}}   (serve)\n"
       "  Full reference: cpp/apps/haptic_sim.md";

@@ -251,6 +251,40 @@ TEST(HapticScene, ABladeOnTheToolCutsAndTheSurfaceFollows) {
   EXPECT_GT(static_cast<int>(fresh.size()), before);
 }
 
+// The same blade separating instead (019): nothing is removed, the mesh gains node copies, and
+// the followed surface is the outward boundary of the cut mesh (its opened faces included), the
+// same oriented triangles as extracted from scratch; the frames go on without events.
+TEST(HapticScene, ASeparatingBladeOpensTheMeshAndTheSurfaceFollows) {
+  Block b;
+  haptic::HapticOptions opt = spring(100);
+  opt.contact = haptic::ContactMode::push;
+  opt.blade = true;
+  opt.blade_edge = Eigen::Vector3d(0, 0, 0.04);
+  opt.blade_mode = hybrid::CutMode::separate;
+  hybrid::DhdConfig config = b.config(40);
+  EXPECT_THROW(haptic::HapticScene(b.mesh, config, opt), InputError);  // the model must allow it
+  config.separates = true;
+  haptic::HapticScene scene(b.mesh, config, opt);
+  const int before = scene.surface().num_triangles();
+  for (long k = 0; k <= 400; ++k) scene.frame(Eigen::Vector3d(0.03 + 0.04 * k / 400.0, 0.052, 0.04));
+  ASSERT_TRUE(scene.events().empty());
+  ASSERT_FALSE(scene.model().cut_events().empty());
+  const mesh::TetMesh& cut = scene.model().mesh();
+  EXPECT_GT(cut.num_nodes(), b.mesh->num_nodes());
+  for (int e = 0; e < cut.num_tets(); ++e) EXPECT_FALSE(scene.model().removed(e));
+  auto canonical = [](std::array<int, 3> t) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return t;
+  };
+  std::set<std::array<int, 3>> fresh, followed;
+  for (const auto& t : mesh::extract_boundary(cut, "cut block")) fresh.insert(canonical(t));
+  for (int t = 0; t < scene.surface().num_triangles(); ++t)
+    if (scene.surface().live(t)) followed.insert(canonical(scene.surface().triangle(t)));
+  EXPECT_EQ(followed, fresh);
+  EXPECT_GT(static_cast<int>(fresh.size()), before);
+  for (int i = 0; i < 3 * cut.num_nodes(); ++i) ASSERT_TRUE(std::isfinite(scene.displacement()[i]));
+}
+
 TEST(RecordedPath, ReadStrictlyAndInterpolated) {
   const fs::path dir = fs::temp_directory_path() / "softsim_test_haptic";
   fs::create_directories(dir);

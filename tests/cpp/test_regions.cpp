@@ -182,10 +182,18 @@ TEST(Regions, SecondaryUpdatesThatNothingMovedAreSkippedAndCounted) {
 
 TEST(Regions, BadRegionInputIsRefused) {
   Block b;
-  auto tool = with_regions(0.02, regions::Coupling::condensed, 10);
-  tool.blade = true;
-  tool.blade_edge = Eigen::Vector3d(0.01, 0, 0);
-  EXPECT_THROW(haptic::HapticScene(b.mesh, b.config(10), tool), InputError);
+  // A rigid tool the probe does not drive (the regions follow the probe's tool only).
+  nlohmann::json with_tool = {{"mesh", "unused"},
+                              {"material", Block::paper_material()},
+                              {"boundary", {{"fixed", {{{"set", "bottom"}}}},
+                                            {"tools", {{{"shape", "sphere"}, {"radius", 0.01}, {"position", {0.05, 0.05, 0.07}}, {"nodes", "top"}}}}}},
+                              {"solver", {{"kind", "explicit"}}}};
+  const auto tool_model = hybrid::read_dhd_config(io::JsonReader(with_tool, "block.json"), *b.mesh);
+  EXPECT_THROW(haptic::HapticScene(b.mesh, tool_model, with_regions(0.02, regions::Coupling::condensed, 10)), InputError);
+  auto negative_margin = with_regions(0.02, regions::Coupling::condensed, 10);
+  negative_margin.contact = haptic::ContactMode::tool;
+  negative_margin.tool_margin = std::nan("");
+  EXPECT_THROW(haptic::HapticScene(b.mesh, tool_model, negative_margin), InputError);
   EXPECT_THROW(haptic::HapticScene(b.mesh, b.config(10), with_regions(0, regions::Coupling::condensed, 10)), InputError);
 
   const nlohmann::json model = {{"mesh", "unused"},

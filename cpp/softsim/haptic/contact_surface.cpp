@@ -73,6 +73,17 @@ void ContactSurface::index_nodes() {
       for (int v : triangles_[t]) node_triangles_[fill[v]++] = t;
 }
 
+void ContactSurface::follow_separation(const cutting::BoundaryChange& change) {
+  for (int t : change.rewritten) triangles_[t] = mesh_.boundary[t];
+  // The surface mirrors the mesh's boundary triangle by triangle (a separating scene does not
+  // also remove elements, HapticScene): take the ones not taken yet.
+  for (int t = std::max(change.first_new, num_triangles()); t < static_cast<int>(mesh_.boundary.size()); ++t) {
+    triangles_.push_back(mesh_.boundary[t]);
+    live_.push_back(1);
+  }
+  index_nodes();
+}
+
 void ContactSurface::remove_elements(const std::vector<int>& elements, const std::function<bool(int)>& removed) {
   if (elements.empty()) return;
   using Face = std::array<int, 3>;

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "softsim/cutting/separation.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::haptic {
@@ -48,6 +49,10 @@ class ContactSurface {
   // the node → triangle lists are then rebuilt (linear in the surface size). `removed(e)`:
   // element e is gone (the ones given here included).
   void remove_elements(const std::vector<int>& elements, const std::function<bool(int)>& removed);
+  // A cut separated the mesh along faces (cutting/separation.hpp): the triangles of moved
+  // elements now hold node copies, and the sides of the opened faces join the surface. Indices
+  // stay valid (a contact on a rewritten triangle follows its element's side).
+  void follow_separation(const cutting::BoundaryChange& change);
   bool live(int triangle) const { return live_[triangle] != 0; }
   const std::array<int, 3>& triangle(int t) const { return triangles_[t]; }
 

@@ -1,6 +1,7 @@
 #include "softsim/haptic/haptic_config.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "softsim/io/errors.hpp"
 
@@ -106,11 +107,22 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
     c.options.blade = true;
     c.options.blade_edge = hybrid::read_vec3(*blade, "edge");
     blade->require(c.options.blade_edge.norm() > 0, "edge", "a blade edge of non-zero length (m)");
+    if (blade->get_choice("mode", {"remove", "separate"}, "remove") == "separate") {
+      c.options.blade_mode = hybrid::CutMode::separate;
+      c.model.separates = true;
+    }
     blade->reject_unknown();
   }
+  if (c.model.separates && cfg.has("regions"))
+    cfg.fail_member("regions", "no regions with a separating cut (a node copy changes the regions' meshes; use "
+                               "\"mode\": \"remove\")");
   if (const auto r = cfg.optional("regions")) {
-    if (c.options.contact == ContactMode::tool) r->fail("no regions with contact \"tool\" (regions need \"grasp\" or \"push\")");
-    if (c.options.blade) r->fail("no regions with a blade (a cut changes the regions)");
+    // The regions drive one rigid tool, the probe's (contact "tool"); a second tool, or one the
+    // probe does not drive, would move on its own ramp where no region was placed for it.
+    const std::size_t tools = c.model.scene.tools.size();
+    if (tools > 0 && c.options.contact != ContactMode::tool)
+      r->fail("probe.contact \"tool\" with a rigid tool in the model (the regions follow the tool the probe drives)");
+    if (tools > 1) r->fail("one rigid tool in the model (the regions follow the tool the probe drives), not " + std::to_string(tools));
     auto& o = c.options.regions;
     c.options.use_regions = true;
     o.radius = r->get_positive("radius");
@@ -122,6 +134,13 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
     o.secondary_dynamic = r->get_choice("secondary", {"static", "implicit"}, "static") == "implicit";
     if (o.secondary_dynamic && o.coupling != regions::Coupling::exchange)
       r->fail_member("secondary", "\"static\" with the condensed coupling (an implicit-dynamic secondary needs \"exchange\")");
+    if (r->has("tool_margin")) {
+      if (c.options.contact != ContactMode::tool)
+        r->fail_member("tool_margin", "no tool_margin without probe.contact \"tool\" (it sizes the region around the tool)");
+      c.options.tool_margin = r->get_double("tool_margin");
+      r->require(c.options.tool_margin >= 0 && std::isfinite(c.options.tool_margin), "tool_margin",
+                 "a distance >= 0 m from the tool's surface");
+    }
     o.skip_below = r->get_double("skip_below", o.skip_below);
     r->require(o.skip_below >= 0 && std::isfinite(o.skip_below), "skip_below", "a displacement >= 0 m (0: never skip)");
     if (const auto a = r->optional("adaptive")) {

@@ -77,7 +77,22 @@ nlohmann::json regions_payload(const HapticScene& scene) {
               {"primary_tets", r->region().elements.size()},
               {"primary_nodes", r->region().nodes.size()},
               {"interface_nodes", r->region().interface.size()},
-              {"setup_seconds", r->stats().setup_seconds}};
+              {"setup_seconds", r->stats().setup_seconds},
+              {"secondary_setup_seconds", r->stats().secondary_setup_seconds}};
+  const regions::TopologyStats& tc = t->topology_stats();
+  // The regions' reaction to cuts: the primary engine's local update against the secondary's
+  // factorisation and condensation built anew (000's contrast of explicit and precomputed).
+  const nlohmann::json topology = {{"changes", tc.changes},
+                                   {"local_updates", tc.local_updates},
+                                   {"local_seconds_total", tc.local_seconds},
+                                   {"local_seconds_max", tc.local_max_seconds},
+                                   {"rebuilds", tc.rebuilds},
+                                   {"rebuild_seconds_total", tc.rebuild_seconds},
+                                   {"rebuild_seconds_max", tc.rebuild_max_seconds},
+                                   {"secondary_seconds_total", tc.secondary_seconds},
+                                   {"secondary_seconds_max", tc.secondary_max_seconds},
+                                   {"linear_model_seconds_total", tc.linear_seconds},
+                                   {"cached_regions_invalidated", tc.invalidated}};
   const char* adaptive[] = {"fixed", "linear", "threshold"};
   return {{"coupling", o.coupling == regions::Coupling::exchange ? "exchange" : "condensed"},
           {"radius", o.radius},
@@ -97,7 +112,10 @@ nlohmann::json regions_payload(const HapticScene& scene) {
           {"secondary_updates", st.secondary_updates},
           {"secondary_skipped", st.secondary_skipped},
           {"secondary_seconds_total", st.secondary_seconds},
-          {"secondary_seconds_max", st.secondary_max_seconds}};
+          {"secondary_seconds_max", st.secondary_max_seconds},
+          {"tool_covers", b.tool_covers},
+          {"late_contacts", b.late_contacts},
+          {"topology", topology}};
 }
 
 }  // namespace
@@ -114,7 +132,11 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
                     {"elements_removed", ev.report.elements.size()},
                     {"pieces", ev.pieces},
                     {"loose_pieces", ev.loose_pieces},
-                    {"seconds", ev.search_seconds + ev.report.seconds + ev.pieces_seconds}});
+                    {"seconds", ev.search_seconds + ev.report.seconds + ev.separation_seconds + ev.pieces_seconds},
+                    {"update_seconds", ev.mode == hybrid::CutMode::separate ? ev.separation_seconds : ev.report.seconds},
+                    {"cut_mode", ev.mode == hybrid::CutMode::separate ? "separate" : "remove"},
+                    {"faces_opened", ev.faces},
+                    {"node_copies", ev.copies.size()}});
   double mean_seconds = 0;
   for (double x : record.compute_seconds) mean_seconds += x;
   if (!record.compute_seconds.empty()) mean_seconds /= double(record.compute_seconds.size());

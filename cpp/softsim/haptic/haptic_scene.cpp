@@ -8,6 +8,7 @@
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/hybrid/partition.hpp"
 #include "softsim/io/errors.hpp"
+#include "softsim/regions/tool_cover.hpp"
 
 namespace softsim::haptic {
 
@@ -42,7 +43,7 @@ hybrid::DhdConfig with_frame_step(hybrid::DhdConfig c, const mesh::TetMesh& mesh
 
 HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdConfig model,
                          const HapticOptions& options)
-    : mesh_(mesh), options_(options), surface_(*mesh) {
+    : mesh_(mesh), options_(options) {
   if (!(options.frame_step > 0)) throw InputError("haptic: frame step must be positive");
   if (options.contact != ContactMode::tool && !(options.probe_stiffness > 0))
     throw InputError("haptic: probe stiffness must be positive");
@@ -50,11 +51,27 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
     throw InputError("haptic: contact \"tool\" needs a rigid tool in the model (boundary.tools)");
   hybrid::DhdConfig c = with_frame_step(std::move(model), *mesh, options.frame_step);
   substeps_ = frame_substeps(options.frame_step, *c.explicit_solver.dt).substeps;
+  if (options_.blade_mode == hybrid::CutMode::separate && !c.separates)
+    throw InputError("haptic: a separating blade needs a model set up for separation (DhdConfig::separates)");
+  // The contact surface follows one kind of cut: removal uncovers faces, separation adds sides.
+  if (c.separates) {
+    bool removes = options_.blade && options_.blade_mode == hybrid::CutMode::remove;
+    for (const auto& cut : c.cuts) removes = removes || cut.mode == hybrid::CutMode::remove;
+    if (removes) throw InputError("haptic: cuts that separate and cuts that remove cannot be mixed in one scene");
+  }
   model_ = std::make_unique<hybrid::DhdScene>(mesh, std::move(c));
+  surface_.emplace(model_->mesh());
+  if (options_.use_regions && model_->config().separates)
+    throw InputError("haptic: regions and a separating cut cannot be combined (a node copy changes the regions' meshes)");
   applied_.resize(3);
   if (options_.use_regions) {
-    if (options_.contact == ContactMode::tool) throw InputError("haptic: regions need contact \"grasp\" or \"push\", not \"tool\"");
-    if (options_.blade) throw InputError("haptic: regions and a blade cannot be combined (a cut changes the regions)");
+    // The regions drive one rigid tool, the probe's: another would move on its own ramp in a
+    // region placed for the probe.
+    const auto& tools = model_->config().scene.tools;
+    if (!tools.empty() && (options_.contact != ContactMode::tool || tools.size() > 1))
+      throw InputError("haptic: regions take one rigid tool, driven by the probe (contact \"tool\")");
+    if (options_.contact == ContactMode::tool && !(tool_margin() >= 0 && std::isfinite(tool_margin())))
+      throw InputError("haptic: the regions' tool margin must be a finite distance >= 0");
     regions_ = std::make_unique<regions::RegionTracker>(*mesh_, model_->config(), model_->kinds(), model_->dt(),
                                                         substeps_, options_.regions);
   }
@@ -69,7 +86,7 @@ const double* HapticScene::displacement() const {
 void HapticScene::prepare(const Eigen::Vector3d& probe) {
   if (!options_.use_regions || regions_->active()) return;
   if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
-  const SurfacePoint s = surface_.closest(probe, displacement());
+  const SurfacePoint s = surface_->closest(probe, displacement());
   regions_->follow(s.nodes, s.weights, frames_);
 }
 
@@ -88,6 +105,38 @@ void HapticScene::back_to_rest() {
   has_previous_tip_ = false;
 }
 
+double HapticScene::tool_margin() const {
+  return options_.tool_margin < 0 ? 0.25 * options_.regions.radius : options_.tool_margin;
+}
+
+hybrid::DhdScene::CutEvent HapticScene::cut(const cutting::BladeSweep& sweep, hybrid::CutMode mode) {
+  const auto ev = model_->cut(sweep, mode, regions_ ? displacement() : nullptr);
+  follow_cuts();
+  return ev;
+}
+
+void HapticScene::scheduled_cuts() {
+  const auto& cuts = model_->config().cuts;
+  for (; next_scheduled_cut_ < cuts.size() && cuts[next_scheduled_cut_].time <= frames_ * options_.frame_step;
+       ++next_scheduled_cut_)
+    cut(cuts[next_scheduled_cut_].sweep, cuts[next_scheduled_cut_].mode);
+}
+
+Eigen::Vector3d HapticScene::tool_frame_with_regions(const Eigen::Vector3d& centre) {
+  const dynamics::RigidTool& tool = model_->config().scene.tools[0];
+  // Every node the tool touches or may touch before the next check is interior to the primary
+  // region (the tool's contact is computed there only).
+  regions::tool_nodes_within(tool, centre, displacement(), tool_margin(), tool_nodes_);
+  regions_->cover(tool_nodes_, frames_);
+  regions_->frame_with_tool(0, centre);
+  // A node inside the tool now but outside the interior had no contact this frame: counted, and
+  // the next frame's cover takes it in.
+  regions::tool_nodes_within(tool, centre, displacement(), 0.0, tool_nodes_);
+  regions_->count_late_contacts(tool_nodes_);
+  tool_touching_ = regions_->tool_contacts(0) > 0;
+  return regions_->tool_force(0);
+}
+
 void HapticScene::cut_with_blade(const Eigen::Vector3d& probe) {
   if (options_.blade && has_previous_tip_) {
     cutting::BladeSweep sweep;
@@ -98,8 +147,8 @@ void HapticScene::cut_with_blade(const Eigen::Vector3d& probe) {
     sweep.b1 = probe + half;
     // A tool at rest, or moving along its own edge, sweeps no area: nothing to cut this frame.
     if (cutting::sweep_problem(sweep).empty()) {
-      const auto ev = model_->cut(sweep);
-      const double seconds = ev.search_seconds + ev.report.seconds + ev.pieces_seconds;
+      const auto ev = model_->cut(sweep, options_.blade_mode, regions_ ? displacement() : nullptr);
+      const double seconds = ev.search_seconds + ev.report.seconds + ev.separation_seconds + ev.pieces_seconds;
       ++blade_stats_.sweeps;
       blade_stats_.seconds += seconds;
       blade_stats_.max_seconds = std::max(blade_stats_.max_seconds, seconds);
@@ -112,9 +161,18 @@ void HapticScene::cut_with_blade(const Eigen::Vector3d& probe) {
 
 void HapticScene::follow_cuts() {
   const auto& events = model_->cut_events();
-  for (; cuts_seen_ < events.size(); ++cuts_seen_)
-    surface_.remove_elements(events[cuts_seen_].report.elements, [this](int e) { return model_->removed(e); });
-  if (in_contact_ && !surface_.live(contact_.triangle)) {
+  // Counted before the regions react: a rebuild that fails (a numerical event) is not retried.
+  while (cuts_seen_ < events.size()) {
+    const auto& ev = events[cuts_seen_++];
+    if (ev.mode == hybrid::CutMode::separate) {
+      surface_->follow_separation(ev.boundary);  // the regions refuse separating cuts
+      continue;
+    }
+    const auto& gone = ev.report.elements;
+    surface_->remove_elements(gone, [this](int e) { return model_->removed(e); });
+    if (regions_) regions_->topology_changed({gone, {}});
+  }
+  if (in_contact_ && !surface_->live(contact_.triangle)) {
     in_contact_ = false;
     contact_ = SurfacePoint();
   }
@@ -122,10 +180,10 @@ void HapticScene::follow_cuts() {
 
 void HapticScene::update_contact(const Eigen::Vector3d& probe, const double* u) {
   if (in_contact_) {
-    contact_ = surface_.closest_near(probe, u, contact_);
+    contact_ = surface_->closest_near(probe, u, contact_);
     return;
   }
-  const SurfacePoint s = surface_.closest(probe, u);
+  const SurfacePoint s = surface_->closest(probe, u);
   // Grasp: the first frame takes hold; push: only a tip at or below the surface touches it.
   if (options_.contact == ContactMode::grasp || (probe - s.position).dot(s.normal) <= 0) {
     in_contact_ = true;
@@ -138,7 +196,13 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
   if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
   const double k = options_.probe_stiffness;
   try {
+    if (regions_) scheduled_cuts();
     cut_with_blade(probe);
+    if (options_.contact == ContactMode::tool && regions_) {
+      const Eigen::Vector3d f = tool_frame_with_regions(probe + options_.tool_offset);
+      follow_cuts();
+      return f;
+    }
     if (options_.contact == ContactMode::tool) {
       // The instrument itself is the tip: the tool sits there for the frame's substeps, and the
       // device receives the force the tissue exerts on it at the end of the frame.
@@ -171,7 +235,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       follow_cuts();  // a cut the config scheduled inside this frame
     }
     if (!in_contact_) return Eigen::Vector3d::Zero();
-    contact_ = surface_.at(contact_.triangle, contact_.weights, displacement());
+    contact_ = surface_->at(contact_.triangle, contact_.weights, displacement());
     return -k * (probe - contact_.position);
   } catch (const NumericalError& e) {
     // Keep answering the device: report, return the model to rest, and start the contact anew.

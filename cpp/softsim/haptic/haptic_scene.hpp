@@ -14,6 +14,7 @@
 // stops: a numerical failure is reported as an event, the model goes back to rest, and the
 // frames go on.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,10 +44,17 @@ struct HapticOptions {
   // each frame, the elements its sweep from the previous tip to the current one crosses.
   bool blade = false;
   Eigen::Vector3d blade_edge = Eigen::Vector3d::Zero();  // m
+  // Remove the elements it crosses, or separate the mesh along the faces nearest its sweep
+  // (the model's config must then allow separation: DhdConfig::separates).
+  hybrid::CutMode blade_mode = hybrid::CutMode::remove;
   // Linked asynchronous regions (001 §5) instead of the whole model: the primary region around
   // the contact every frame, the secondary region linear and coupled (regions/region_solver.hpp).
   bool use_regions = false;
   regions::RegionOptions regions;
+  // Regions with contact "tool": the primary interior holds every node within this distance of
+  // the tool's surface (m), the nodes it may touch before the next frame's check; < 0: a quarter
+  // of regions.radius.
+  double tool_margin = -1;
 };
 
 struct FrameEvent {
@@ -68,6 +76,9 @@ class HapticScene {
   Eigen::Vector3d frame(const Eigen::Vector3d& probe);
   // Back to rest, no contact, frame 0.
   void reset();
+  // Between frames: a cut by element removal along `sweep` in the current geometry (the whole
+  // model's, or the regions' published one); the surface and the regions follow it.
+  hybrid::DhdScene::CutEvent cut(const cutting::BladeSweep& sweep, hybrid::CutMode mode = hybrid::CutMode::remove);
 
   const HapticOptions& options() const { return options_; }
   int substeps() const { return substeps_; }
@@ -80,7 +91,7 @@ class HapticScene {
   const std::vector<FrameEvent>& events() const { return events_; }
   hybrid::DhdScene& model() { return *model_; }
   const hybrid::DhdScene& model() const { return *model_; }
-  const ContactSurface& surface() const { return surface_; }
+  const ContactSurface& surface() const { return *surface_; }
   // The linked regions (null: the whole model): the active region, how often regions were
   // built and handed over, and their statistics.
   const regions::RegionTracker* regions() const { return regions_.get(); }
@@ -99,6 +110,12 @@ class HapticScene {
   // and the config's scheduled ones); a contact on a triangle that left the surface ends.
   void cut_with_blade(const Eigen::Vector3d& probe);
   void follow_cuts();
+  // Regions: the config's scheduled cuts whose time falls in this frame, at its start (the whole
+  // model makes them at the first explicit step that reaches their time).
+  void scheduled_cuts();
+  // Contact "tool" with the regions: the region covers what the tool may touch, one frame.
+  Eigen::Vector3d tool_frame_with_regions(const Eigen::Vector3d& centre);
+  double tool_margin() const;
   // The model at rest and no contact; frames and events kept (recovery from a failure).
   void back_to_rest();
 
@@ -106,7 +123,7 @@ class HapticScene {
   HapticOptions options_;
   int substeps_ = 1;
   std::unique_ptr<hybrid::DhdScene> model_;
-  ContactSurface surface_;
+  std::optional<ContactSurface> surface_;  // on the model's mesh (a separating model's own copy)
   bool in_contact_ = false;     // the spring's contact (contact_ is valid while it holds)
   bool tool_touching_ = false;  // contact "tool"
   SurfacePoint contact_;
@@ -118,6 +135,8 @@ class HapticScene {
   BladeStats blade_stats_;  // the model's cut events the surface has followed
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
   std::unique_ptr<regions::RegionTracker> regions_;  // the linked regions, or null
+  std::size_t next_scheduled_cut_ = 0;  // regions: the config's cuts made so far
+  std::vector<int> tool_nodes_;          // regions: scratch for the tool's node sets
 };
 
 // The explicit step and substep count of a frame: the largest step ≤ `dt_limit` that divides

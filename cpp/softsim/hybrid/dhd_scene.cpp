@@ -114,7 +114,7 @@ dynamics::ExplicitResult DhdScene::run(const dynamics::SnapshotFn& snapshot, con
   return solver().run(snapshot, progress);
 }
 
-DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode) {
+DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode, const double* u) {
   using Clock = std::chrono::steady_clock;
   const std::string problem = cutting::sweep_problem(sweep);
   if (!problem.empty()) throw InputError("cut: expected " + problem);
@@ -133,7 +133,7 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode)
   ev.mode = mode;
   const auto t0 = Clock::now();
   const std::vector<int> crossed =
-      cutting::elements_crossed(*mesh_, s.displacement(), sweep, *cut_grid_, cut_candidates_,
+      cutting::elements_crossed(*mesh_, u ? u : s.displacement(), sweep, *cut_grid_, cut_candidates_,
                                 [&](int e) { return elements_->removed(e); });
   ev.search_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (crossed.empty()) {  // a sweep through cut space or beside the organ: nothing changes
@@ -142,7 +142,7 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode)
     return ev;
   }
   if (mode == CutMode::separate) {
-    ev = separate(sweep, ev, crossed);
+    ev = separate(sweep, ev, crossed, u ? u : s.displacement());
     if (ev.faces == 0) return ev;
   } else {
     ev.report = s.remove_elements(*mesh_, crossed);
@@ -159,18 +159,19 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode)
 
 // The faces between the elements on either side of the sweep open, by node copies: the plan
 // (which faces, which nodes), then the mesh, then the engine, each a local update.
-DhdScene::CutEvent DhdScene::separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed) {
+DhdScene::CutEvent DhdScene::separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed,
+                                      const double* u) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   if (!topology_) topology_ = std::make_unique<cutting::FaceTopology>(*mesh_);
   const auto removed = [&](int e) { return elements_->removed(e); };
   const auto held = [&](int node) { return node < static_cast<int>(held_.size()) && held_[node] != 0; };
   const cutting::SeparationPlan plan =
-      cutting::plan_separation(*mesh_, solver().displacement(), sweep, crossed, *topology_, removed, held);
+      cutting::plan_separation(*mesh_, u, sweep, crossed, *topology_, removed, held);
   ev.faces = static_cast<int>(plan.faces.size());
   ev.held_nodes_kept = plan.held_nodes_kept;
   if (plan.empty()) return ev;
-  boundary_change_ = cutting::apply_separation(*cut_mesh_, *topology_, plan);
+  ev.boundary = cutting::apply_separation(*cut_mesh_, *topology_, plan);
   std::vector<fem::ElementSet::NodeCopy> copies;
   for (const auto& split : plan.splits) {
     copies.push_back({split.node, split.copy, split.elements});

@@ -88,6 +88,7 @@ class DhdScene {
     std::vector<std::array<int, 2>> copies;
     int held_nodes_kept = 0;
     double separation_seconds = 0;
+    cutting::BoundaryChange boundary;  // what it did to the mesh's boundary triangles
     int pieces = 0;              // connected pieces left after the cut
     int loose_pieces = 0;        // of them, held by no constraint
     double search_seconds = 0;   // finding the crossed elements
@@ -99,10 +100,10 @@ class DhdScene {
   // one cost (its search).
   // With CutMode::separate the mesh opens along the faces nearest the sweep instead
   // (cutting/separation.hpp; the config must allow it: DhdConfig::separates).
-  CutEvent cut(const cutting::BladeSweep& sweep, CutMode mode = CutMode::remove);
+  // `u` (3 per node): the geometry to cut in when the model is not the one stepped (the linked
+  // regions publish it); null: the model's own.
+  CutEvent cut(const cutting::BladeSweep& sweep, CutMode mode = CutMode::remove, const double* u = nullptr);
   const std::vector<CutEvent>& cut_events() const { return cut_events_; }
-  // What the last separating cut did to the mesh's boundary triangles (for a contact surface).
-  const cutting::BoundaryChange& last_boundary_change() const { return boundary_change_; }
   bool removed(int element) const { return elements_ && elements_->removed(element); }
 
   // ---- static equilibrium of the same model (000 eq. 24) ----
@@ -123,8 +124,7 @@ class DhdScene {
   std::unique_ptr<cutting::ElementGrid> cut_grid_;  // built at the first cut: the blade's local search
   std::vector<int> cut_candidates_;
   std::unique_ptr<cutting::FaceTopology> topology_;  // built at the first separating cut
-  cutting::BoundaryChange boundary_change_;
-  CutEvent separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed);
+  CutEvent separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed, const double* u);
   std::unique_ptr<dynamics::ExplicitSolver> solver_;
   double setup_seconds_ = 0;
 };

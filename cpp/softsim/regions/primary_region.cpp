@@ -7,7 +7,8 @@
 
 namespace softsim::regions {
 
-PrimaryRegion select_primary_region(const mesh::TetMesh& mesh, int centre, double radius) {
+PrimaryRegion select_primary_region(const mesh::TetMesh& mesh, int centre, double radius,
+                                    const std::vector<char>* removed) {
   if (centre < 0 || centre >= mesh.num_nodes())
     throw InputError("regions: contact node " + std::to_string(centre) + " out of range");
   if (!(radius > 0) || !std::isfinite(radius)) throw InputError("regions: the primary radius must be positive");
@@ -20,12 +21,19 @@ PrimaryRegion select_primary_region(const mesh::TetMesh& mesh, int centre, doubl
   // The centre's neighbours count as near whatever the radius, so that every node sharing an
   // element with the centre is interior: a contact triangle on the centre is then always
   // solved every frame.
-  for (const auto& t : mesh.tets)
+  for (int e = 0; e < mesh.num_tets(); ++e) {
+    if (removed && (*removed)[e]) continue;
+    const auto& t = mesh.tets[e];
     if (t[0] == centre || t[1] == centre || t[2] == centre || t[3] == centre)
       for (int n : t) near[n] = 1;
+  }
   // 1: touched by a primary element; 2: by a secondary one (both: interface).
   std::vector<char> touched(mesh.num_nodes(), 0);
   for (int e = 0; e < mesh.num_tets(); ++e) {
+    if (removed && (*removed)[e]) {
+      ++r.removed_elements;
+      continue;
+    }
     const auto& t = mesh.tets[e];
     const bool primary = near[t[0]] || near[t[1]] || near[t[2]] || near[t[3]];
     if (primary) r.elements.push_back(e);

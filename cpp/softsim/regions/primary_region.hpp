@@ -26,14 +26,16 @@ struct PrimaryRegion {
   std::vector<char> interior;      // per global node: an interior node of the primary region
   mesh::TetMesh submesh;           // the primary elements on their own nodes
 
+  int removed_elements = 0;        // elements a cut took out before the region was built
   int num_secondary_elements(const mesh::TetMesh& mesh) const {
-    return mesh.num_tets() - static_cast<int>(elements.size());
+    return mesh.num_tets() - static_cast<int>(elements.size()) - removed_elements;
   }
 };
 
 // The primary region around node `centre` (InputError for a node out of range or a radius that
 // is not positive). A radius covering the mesh gives every element and no interface: the
-// whole model.
-PrimaryRegion select_primary_region(const mesh::TetMesh& mesh, int centre, double radius);
+// whole model. `removed` (per element, optional): elements a cut took out, in neither region.
+PrimaryRegion select_primary_region(const mesh::TetMesh& mesh, int centre, double radius,
+                                    const std::vector<char>* removed = nullptr);
 
 }  // namespace softsim::regions

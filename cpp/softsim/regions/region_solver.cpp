@@ -20,8 +20,6 @@ void check_supported(const hybrid::DhdConfig& model) {
   const auto& s = model.scene;
   if (!s.loads.empty()) throw InputError("regions: the model's nodal loads are not supported (the haptic loop is the input)");
   if (s.has_probe) throw InputError("regions: the model's probe spring is not supported (the haptic loop is the probe)");
-  if (!s.tools.empty()) throw InputError("regions: rigid tools are not supported with regions");
-  if (!model.cuts.empty()) throw InputError("regions: cuts are not supported with regions");
   for (const auto& c : s.constraints)
     if (!c.displacement.isZero())
       throw InputError("regions: constraint \"" + c.name + "\" prescribes a non-zero displacement; regions hold constraints at zero");
@@ -61,6 +59,18 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
       if (region_.local[i] >= 0) local.nodes.push_back(region_.local[i]);
     if (!local.nodes.empty()) scene_.constraints.push_back(std::move(local));
   }
+  // The tools touch the interior nodes they list (sub-mesh numbering, ascending like the global).
+  for (const auto& tool : model.scene.tools) {
+    dynamics::RigidTool local = tool;
+    local.nodes.clear();
+    local.positions.clear();
+    for (std::size_t j = 0; j < tool.nodes.size(); ++j)
+      if (region_.interior[tool.nodes[j]]) {
+        local.nodes.push_back(region_.local[tool.nodes[j]]);
+        local.positions.push_back(tool.positions[j]);
+      }
+    scene_.tools.push_back(std::move(local));
+  }
   std::vector<fem::ElementKind> sub_kinds;
   sub_kinds.reserve(region_.elements.size());
   for (int e : region_.elements) sub_kinds.push_back(kinds[e]);
@@ -72,11 +82,13 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
                                                        hybrid::explicit_options(model, dt));
   // A primary region that covers the mesh leaves no secondary region: the whole model.
   if (region_.num_secondary_elements(mesh) > 0) {
+    const auto t1 = Clock::now();
     if (exchange)
       exchange_ = std::make_unique<ExchangeSecondary>(
           linear, region_, options.secondary_dynamic ? dt * substeps * options.secondary_every : 0.0);
     else
       condensed_ = std::make_unique<CondensedSecondary>(linear, region_);
+    stats_.secondary_setup_seconds = seconds_since(t1);
   }
   const std::size_t ni = 3 * region_.interface.size();
   interface_before_.assign(ni, 0.0);
@@ -161,6 +173,31 @@ void RegionSolver::frame(const std::vector<dynamics::AppliedForce>& forces) {
   publish_primary();
   ++stats_.frames;
   if ((exchange_ || condensed_) && (stats_.frames - last_update_) >= options_.secondary_every) secondary_update();
+}
+
+bool RegionSolver::secondary_affected(const std::vector<int>& elements) const {
+  if (!exchange_ && !condensed_) return false;
+  for (int e : elements) {
+    if (!std::binary_search(region_.elements.begin(), region_.elements.end(), e)) return true;
+    if (exchange_)
+      for (int n : mesh_->tets[e])
+        if (region_.local[n] >= 0 && !region_.interior[n]) return true;
+  }
+  return false;
+}
+
+void RegionSolver::remove_primary_elements(const std::vector<int>& elements) {
+  std::vector<int> local;
+  for (int e : elements) {
+    const auto it = std::lower_bound(region_.elements.begin(), region_.elements.end(), e);
+    if (it != region_.elements.end() && *it == e) local.push_back(static_cast<int>(it - region_.elements.begin()));
+  }
+  if (local.empty()) return;
+  const auto report = solver_->remove_elements(region_.submesh, local);  // 000's local update
+  publish_primary();
+  ++stats_.local_cuts;
+  stats_.local_cut_seconds += report.seconds;
+  stats_.local_cut_max_seconds = std::max(stats_.local_cut_max_seconds, report.seconds);
 }
 
 void RegionSolver::publish_primary() {

@@ -11,6 +11,10 @@
 //               every substep; its own nodes recovered every `secondary_every` frames (pictures).
 // Skipping (issue: "skip what the scene does not need"): a secondary update whose input moved
 // by less than `skip_below` since the last update is not done; the count is kept.
+// Rigid tools (the model's boundary.tools) act on the primary region's interior nodes only: the
+// caller keeps every node a tool may touch interior (RegionTracker::cover). A topology change
+// (a cut) inside the primary region is the engine's local update; one that reaches the
+// secondary region invalidates its factorisation, and the caller builds the region anew.
 #include <memory>
 #include <vector>
 
@@ -63,6 +67,9 @@ struct RegionStats {
   double setup_seconds = 0;     // building the primary engine and the secondary factorisation
   double secondary_seconds = 0; // secondary solves / recoveries, summed
   double secondary_max_seconds = 0;
+  double secondary_setup_seconds = 0;  // of setup_seconds: the secondary's factorisation (and condensation)
+  long local_cuts = 0;                 // cuts done by the primary engine's local update
+  double local_cut_seconds = 0, local_cut_max_seconds = 0;
 };
 
 class RegionSolver {
@@ -70,7 +77,8 @@ class RegionSolver {
   // `model`: the scene's dhd_sim config (explicit, step `dt`), `kinds` its partition (one per
   // tetrahedron of `mesh`), `masses` the whole mesh's lumped masses, `linear` the small-strain
   // model of the same mesh. InputError for a scene the regions do not support (loads, a probe
-  // spring or tools in the config: the haptic loop is the only input).
+  // spring in the config: the haptic loop is the only input). Elements `linear` marks removed
+  // are in neither region (`region` is selected without them).
   RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& model, const std::vector<fem::ElementKind>& kinds,
                const std::vector<double>& masses, const LinearModel& linear, double dt, int substeps,
                PrimaryRegion region, const RegionOptions& options);
@@ -94,6 +102,20 @@ class RegionSolver {
   // untouched).
   void primary_previous(double* u) const;
   const PrimaryRegion& region() const { return region_; }
+
+  // ---- rigid tools (the model's boundary.tools, on the primary interior's nodes) ----
+  void set_tool_position(int k, const Eigen::Vector3d& centre) { solver_->set_tool_position(k, centre); }
+  Eigen::Vector3d tool_force(int k) const { return solver_->tool_force(k); }
+  int tool_contacts(int k) const { return solver_->tool_contacts(k); }
+
+  // ---- topology changes (cuts) ----
+  // Whether removing `elements` (global indices) changes the secondary region's system: a
+  // secondary element, or (exchange, whose secondary rows include the interface) a primary
+  // element on an interface node. Then the region must be built anew.
+  bool secondary_affected(const std::vector<int>& elements) const;
+  // The primary engine's local update (ExplicitSolver::remove_elements) for elements that do not
+  // affect the secondary; the elements not in this region are ignored.
+  void remove_primary_elements(const std::vector<int>& elements);
   const RegionStats& stats() const { return stats_; }
 
  private:

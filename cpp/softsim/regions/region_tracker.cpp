@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "softsim/cutting/pieces.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/io/errors.hpp"
 
@@ -12,12 +13,19 @@ namespace softsim::regions {
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
 void add(RegionStats& to, const RegionStats& a, const RegionStats& minus) {
   to.frames += a.frames - minus.frames;
   to.secondary_updates += a.secondary_updates - minus.secondary_updates;
   to.secondary_skipped += a.secondary_skipped - minus.secondary_skipped;
   to.secondary_seconds += a.secondary_seconds - minus.secondary_seconds;
   to.secondary_max_seconds = std::max(to.secondary_max_seconds, a.secondary_max_seconds);
+  to.local_cuts += a.local_cuts - minus.local_cuts;
+  to.local_cut_seconds += a.local_cut_seconds - minus.local_cut_seconds;
+  to.local_cut_max_seconds = std::max(to.local_cut_max_seconds, a.local_cut_max_seconds);
 }
 
 void check_options(const RegionOptions& o) {
@@ -38,22 +46,65 @@ RegionTracker::RegionTracker(const mesh::TetMesh& mesh, const hybrid::DhdConfig&
     : mesh_(&mesh), model_(model), kinds_(std::move(kinds)), dt_(dt), substeps_(substeps), options_(options),
       hold_(std::max(1, options.adaptive.hold_frames)) {
   check_options(options);
-  masses_ = dynamics::lumped_mass(mesh, model.material.elastic.density);
-  const int n = mesh.num_nodes();
-  Eigen::VectorXd gravity = Eigen::VectorXd::Zero(3 * n);
-  for (int i = 0; i < n; ++i) gravity.segment<3>(3 * i) = masses_[i] * model.scene.gravity;
-  linear_ = std::make_unique<LinearModel>(
-      mesh, model.material, dynamics::constrained_mask(dynamics::resolve_constraints(model.scene, n), n),
-      std::move(gravity), masses_, model.damping_alpha);
-  rest_.assign(3 * static_cast<std::size_t>(n), 0.0);
+  removed_.assign(mesh.num_tets(), 0);
+  rest_.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
+  update_linear();
   const bool adaptive = options.adaptive.kind != AdaptiveRadius::Kind::fixed;
   level_frames_.assign(adaptive ? options.adaptive.levels : 1, 0);
 }
 
+void RegionTracker::update_linear() {
+  const int n = mesh_->num_nodes();
+  // The mesh a cut left: its lumped masses, and its nodes without elements held (they carry no
+  // stiffness; a quasi-static secondary would be singular there).
+  mesh::TetMesh left;
+  left.nodes = mesh_->nodes;
+  for (int e = 0; e < mesh_->num_tets(); ++e)
+    if (!removed_[e]) left.tets.push_back(mesh_->tets[e]);
+  masses_ = dynamics::lumped_mass(left, model_.material.elastic.density);
+  std::vector<char> constrained = dynamics::constrained_mask(dynamics::resolve_constraints(model_.scene, n), n);
+  for (int i = 0; i < n; ++i)
+    if (masses_[i] == 0) constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
+  const bool cut = std::find(removed_.begin(), removed_.end(), 1) != removed_.end();
+  if (cut) {
+    // A piece the cut detached is held by nothing: quasi-statically it has no position, and the
+    // secondary's system would be singular. The linear model holds it at rest (the explicit
+    // primary region still moves whatever of it lies there).
+    std::vector<char> held(n, 0);
+    for (const auto& c : model_.scene.constraints)
+      for (int i : c.nodes) held[i] = 1;
+    const cutting::Pieces pieces =
+        cutting::find_pieces(*mesh_, [&](int e) { return removed_[e] != 0; }, [&](int i) { return held[i] != 0; });
+    std::vector<char> loose(pieces.count, 0);
+    for (int k : pieces.loose) loose[k] = 1;
+    for (int i = 0; i < n; ++i)
+      if (pieces.node_piece[i] >= 0 && loose[pieces.node_piece[i]])
+        constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
+  }
+  Eigen::VectorXd gravity = Eigen::VectorXd::Zero(3 * n);
+  for (int i = 0; i < n; ++i) gravity.segment<3>(3 * i) = masses_[i] * model_.scene.gravity;
+  linear_ = std::make_shared<LinearModel>(*mesh_, model_.material, std::move(constrained),
+                                          std::move(gravity), masses_, model_.damping_alpha,
+                                          cut ? removed_ : std::vector<char>());
+  linear_stale_ = false;
+}
+
 double RegionTracker::level_radius(int level) const {
+  // Adaptive: `levels` sizes from radius to max_radius; beyond them (a tool's contact set that
+  // needs more) the same steps go on. Fixed: steps of half the radius.
   const auto& a = options_.adaptive;
-  if (a.kind == AdaptiveRadius::Kind::fixed) return options_.radius;
-  return options_.radius + (a.max_radius - options_.radius) * level / (a.levels - 1);
+  const double step = a.kind == AdaptiveRadius::Kind::fixed ? 0.5 * options_.radius
+                                                             : (a.max_radius - options_.radius) / (a.levels - 1);
+  return options_.radius + step * level;
+}
+
+int RegionTracker::covering_level(int centre, const std::vector<int>& nodes) const {
+  double r = 0;
+  for (int i : nodes) r = std::max(r, (mesh_->nodes[i] - mesh_->nodes[centre]).norm());
+  if (r <= options_.radius) return 0;
+  const double step = level_radius(1) - level_radius(0);
+  // Rounded up, with room for the rounding of level_radius: the region's radius reaches r.
+  return static_cast<int>(std::ceil((r - options_.radius) / step + 1e-9));
 }
 
 int RegionTracker::target_level(int centre, long frame) {
@@ -74,30 +125,75 @@ int RegionTracker::target_level(int centre, long frame) {
   return a.hold_frames > 0 ? hold_.push(frame, level) : level;
 }
 
+void RegionTracker::set_centre(int centre) {
+  if (centre == centre_ || options_.adaptive.kind != AdaptiveRadius::Kind::threshold) return;
+  near_nodes_.clear();
+  near_distance_.clear();
+  const Eigen::Vector3d c = mesh_->nodes[centre];
+  for (int i = 0; i < mesh_->num_nodes(); ++i) {
+    const double d = (mesh_->nodes[i] - c).norm();
+    if (d <= options_.adaptive.max_radius) {
+      near_nodes_.push_back(i);
+      near_distance_.push_back(d);
+    }
+  }
+}
+
 void RegionTracker::follow(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights, long frame) {
   int a = 0;
   weights.maxCoeff(&a);
   const bool inside = active_ && active_->interior(nodes[0]) && active_->interior(nodes[1]) && active_->interior(nodes[2]);
   const int centre = inside ? centre_ : nodes[a];
-  if (centre != centre_ && options_.adaptive.kind == AdaptiveRadius::Kind::threshold) {
-    near_nodes_.clear();
-    near_distance_.clear();
-    const Eigen::Vector3d c = mesh_->nodes[centre];
-    for (int i = 0; i < mesh_->num_nodes(); ++i) {
-      const double d = (mesh_->nodes[i] - c).norm();
-      if (d <= options_.adaptive.max_radius) {
-        near_nodes_.push_back(i);
-        near_distance_.push_back(d);
-      }
-    }
-  }
+  set_centre(centre);
   const int level = target_level(centre, frame);
   if (inside && level == active_level_) return;
   activate(centre, level);
 }
 
+void RegionTracker::cover(const std::vector<int>& nodes, long frame) {
+  if (nodes.empty()) return;
+  bool inside = active_ != nullptr;
+  for (int i : nodes) inside = inside && active_->interior(i);
+  int centre = centre_;
+  if (!inside) {
+    // Re-centred on the node of the set nearest its centroid (reference positions).
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int i : nodes) mean += mesh_->nodes[i];
+    mean /= double(nodes.size());
+    double best = 1e300;
+    for (int i : nodes)
+      if ((mesh_->nodes[i] - mean).norm() < best) {
+        best = (mesh_->nodes[i] - mean).norm();
+        centre = i;
+      }
+  }
+  set_centre(centre);
+  const int target = target_level(centre, frame);
+  const int level = std::max(target, covering_level(centre, nodes));
+  // A region that already holds the nodes is kept unless the adaptive policy changes its size.
+  if (inside && (level == active_level_ || (level > active_level_ && target <= active_level_))) return;
+  activate(centre, level);
+  ++builds_.tool_covers;
+}
+
+int RegionTracker::count_late_contacts(const std::vector<int>& touched) {
+  int late = 0;
+  for (int i : touched) late += (!active_ || !active_->interior(i)) ? 1 : 0;
+  builds_.late_contacts += late;
+  return late;
+}
+
+std::unique_ptr<RegionSolver> RegionTracker::build(int centre, int level, double& seconds) {
+  const auto t0 = Clock::now();
+  if (linear_stale_) update_linear();
+  auto solver = std::make_unique<RegionSolver>(*mesh_, model_, kinds_, masses_, *linear_, dt_, substeps_,
+                                               select_primary_region(*mesh_, centre, level_radius(level), &removed_),
+                                               options_);
+  seconds = seconds_since(t0);
+  return solver;
+}
+
 void RegionTracker::activate(int centre, int level) {
-  using Clock = std::chrono::steady_clock;
   // What the current region publishes, brought up to date, is where the next one starts: its
   // primary nodes with their previous step (the central difference resumes), the rest at rest
   // where the secondary put them (quasi-static).
@@ -116,19 +212,73 @@ void RegionTracker::activate(int centre, int level) {
     centre_ = centre;
   }
   auto& slot = built_[level];
-  if (!slot) {
-    const auto t0 = Clock::now();
-    slot = std::make_unique<RegionSolver>(*mesh_, model_, kinds_, masses_, *linear_, dt_, substeps_,
-                                          select_primary_region(*mesh_, centre, level_radius(level)), options_);
-    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (!slot.solver) {
+    double seconds = 0;
+    slot.solver = build(centre, level, seconds);
+    slot.linear = linear_;
     ++builds_.builds;
     builds_.seconds += seconds;
     builds_.max_seconds = std::max(builds_.max_seconds, seconds);
   }
-  active_ = slot.get();
+  active_ = slot.solver.get();
   active_level_ = level;
+  if (level >= static_cast<int>(level_frames_.size())) level_frames_.resize(level + 1, 0);
   if (!u.empty()) active_->start_from(u, u_before);
   active_from_ = active_->stats();
+}
+
+void RegionTracker::topology_changed(const TopologyChange& change) {
+  if (change.empty()) return;
+  ++topology_.changes;
+  for (int e : change.removed) removed_[e] = 1;
+  linear_stale_ = true;  // regions built from now on see the cut mesh
+  const bool removal_only = change.changed.empty();
+  for (auto it = built_.begin(); it != built_.end();) {
+    RegionSolver* r = it->second.solver.get();
+    if (removal_only && !r->secondary_affected(change.removed)) {
+      // Inside the primary region: the explicit engine's local update, nothing set up again.
+      const double before = r->stats().local_cut_seconds;
+      r->remove_primary_elements(change.removed);
+      if (r == active_) {
+        const double s = r->stats().local_cut_seconds - before;
+        ++topology_.local_updates;
+        topology_.local_seconds += s;
+        topology_.local_max_seconds = std::max(topology_.local_max_seconds, s);
+      }
+      ++it;
+      continue;
+    }
+    if (r != active_) {  // a cached region the change reached: built again if it is needed again
+      ++topology_.invalidated;
+      it = built_.erase(it);
+      continue;
+    }
+    // The active region's secondary factorisation (and condensed interface) no longer holds:
+    // the region is built anew on the cut mesh and resumes from the state it published.
+    std::vector<double> u(active_->displacement(), active_->displacement() + rest_.size());
+    std::vector<double> u_before = u;
+    active_->primary_previous(u_before.data());
+    const auto t0 = Clock::now();
+    update_linear();
+    const double linear_seconds = seconds_since(t0);
+    double build_seconds = 0;
+    auto rebuilt = build(centre_, active_level_, build_seconds);  // may fail: the old region stays
+    add(retired_, active_->stats(), active_from_);
+    it->second.solver = std::move(rebuilt);
+    it->second.linear = linear_;
+    active_ = it->second.solver.get();
+    active_->start_from(u, u_before);
+    active_from_ = active_->stats();
+    const double total = linear_seconds + build_seconds;
+    const double secondary = active_->stats().secondary_setup_seconds;
+    ++topology_.rebuilds;
+    topology_.rebuild_seconds += total;
+    topology_.rebuild_max_seconds = std::max(topology_.rebuild_max_seconds, total);
+    topology_.secondary_seconds += secondary;
+    topology_.secondary_max_seconds = std::max(topology_.secondary_max_seconds, secondary);
+    topology_.linear_seconds += linear_seconds;
+    ++it;
+  }
 }
 
 void RegionTracker::frame(const std::vector<dynamics::AppliedForce>& forces) {
@@ -137,8 +287,14 @@ void RegionTracker::frame(const std::vector<dynamics::AppliedForce>& forces) {
   ++level_frames_[std::max(active_level_, 0)];
 }
 
+void RegionTracker::frame_with_tool(int k, const Eigen::Vector3d& centre) {
+  if (!active_) return;
+  active_->set_tool_position(k, centre);
+  frame({});
+}
+
 void RegionTracker::back_to_rest() {
-  for (auto& [level, r] : built_) r->start_from({}, {});
+  for (auto& [level, r] : built_) r.solver->start_from({}, {});
 }
 
 RegionStats RegionTracker::totals() const {

@@ -6,6 +6,11 @@
 // the state the current one publishes (its secondary brought up to date first, the central
 // difference resumed) so the force does not jump. Regions built for the current contact node are
 // kept, so a size that comes back is not built again (001 precomputes one system per size).
+// With a rigid tool the region is placed by the nodes the tool touches or may touch (cover):
+// all of them interior, the region grown past the adaptive sizes when the contact set needs it.
+// A topology change (topology_changed) is a local update of the active primary engine where
+// it can be, else the active region is built anew on the cut mesh, and cached regions the
+// change reaches are dropped.
 #include <array>
 #include <map>
 #include <memory>
@@ -13,6 +18,7 @@
 
 #include "softsim/multirate/region_layout.hpp"
 #include "softsim/regions/region_solver.hpp"
+#include "softsim/regions/topology_change.hpp"
 
 namespace softsim::regions {
 
@@ -20,6 +26,8 @@ struct RegionBuilds {
   long builds = 0;        // regions built
   long switches = 0;      // hand-overs between regions (moves and size changes)
   double seconds = 0, max_seconds = 0;  // building them
+  long tool_covers = 0;    // hand-overs the tool's contact set asked for (moved or grown)
+  long late_contacts = 0;  // nodes found in the tool after a frame outside the primary interior
 };
 
 class RegionTracker {
@@ -31,8 +39,26 @@ class RegionTracker {
   // Makes the active region one that suits the contact on `nodes` with `weights` (barycentric):
   // centred on the node of largest weight, whose neighbours are always interior.
   void follow(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights, long frame);
+  // A rigid tool: makes the active region one whose interior holds every node in `nodes` (the
+  // nodes the tool touches or may touch, tool_cover.hpp), re-centred on them when the current
+  // one does not, and grown beyond the adaptive sizes (in the same radius steps) when they
+  // spread wider; the adaptive policy still applies around the centre. Nothing for no nodes.
+  void cover(const std::vector<int>& nodes, long frame);
+  // After a frame: how many of `touched` (nodes the tool touches now) are outside the primary
+  // interior (their contact was not computed this frame); counted as late contacts. The next
+  // cover() takes them in.
+  int count_late_contacts(const std::vector<int>& touched);
   // One frame of the active region (none yet: nothing moves).
   void frame(const std::vector<dynamics::AppliedForce>& forces);
+  // One frame with rigid tool k at `centre` (none active yet: nothing moves, no force).
+  void frame_with_tool(int k, const Eigen::Vector3d& centre);
+  Eigen::Vector3d tool_force(int k) const { return active_ ? active_->tool_force(k) : Eigen::Vector3d::Zero(); }
+  int tool_contacts(int k) const { return active_ ? active_->tool_contacts(k) : 0; }
+  // Elements removed or changed by a cut (topology_change.hpp).
+  void topology_changed(const TopologyChange& change);
+  const TopologyStats& topology_stats() const { return topology_; }
+  // Per element: removed by a cut so far.
+  const std::vector<char>& removed() const { return removed_; }
   // Every region back to rest (recovery from a numerical failure).
   void back_to_rest();
   const double* displacement() const { return active_ ? active_->displacement() : rest_.data(); }
@@ -47,7 +73,15 @@ class RegionTracker {
  private:
   int target_level(int centre, long frame);
   double level_radius(int level) const;
+  // The smallest level whose region around `centre` holds `nodes` as near nodes.
+  int covering_level(int centre, const std::vector<int>& nodes) const;
+  void set_centre(int centre);
   void activate(int centre, int level);
+  // A region built now at (centre, level) on the current cut mesh; its build time into `seconds`.
+  std::unique_ptr<RegionSolver> build(int centre, int level, double& seconds);
+  // The small-strain model and the lumped masses of the mesh a cut left (after a cut, at the
+  // next build), the old model kept while regions built on it remain.
+  void update_linear();
 
   const mesh::TetMesh* mesh_;
   hybrid::DhdConfig model_;
@@ -56,16 +90,24 @@ class RegionTracker {
   int substeps_;
   RegionOptions options_;
   std::vector<double> masses_;
-  std::unique_ptr<LinearModel> linear_;
+  std::shared_ptr<LinearModel> linear_;
+  bool linear_stale_ = false;  // a cut since linear_ and masses_ were made
+  std::vector<char> removed_;  // per element
   std::vector<double> rest_;
-  // Regions built around the current contact node, by size level.
+  // Regions built around the current contact node, by size level, each with the linear model it
+  // was built on.
+  struct Built {
+    std::unique_ptr<RegionSolver> solver;
+    std::shared_ptr<LinearModel> linear;
+  };
   int centre_ = -1;
-  std::map<int, std::unique_ptr<RegionSolver>> built_;
+  std::map<int, Built> built_;
   RegionSolver* active_ = nullptr;
   int active_level_ = -1;
   RegionStats active_from_;  // the active region's statistics when it became active
   RegionStats retired_;      // summed over the regions' earlier active spells
   RegionBuilds builds_;
+  TopologyStats topology_;
   multirate::SlidingMax hold_;
   std::vector<long> level_frames_;
   // Threshold policy: the nodes within max_radius of the current centre, by distance.

@@ -28,9 +28,19 @@ Eigen::VectorXd gather(const Eigen::VectorXd& v, const std::vector<int>& dofs) {
 }  // namespace
 
 LinearModel::LinearModel(const mesh::TetMesh& m, const fem::Material& mat, std::vector<char> c, Eigen::VectorXd g,
-                         std::vector<double> node_masses, double alpha)
+                         std::vector<double> node_masses, double alpha, std::vector<char> removed_elements)
     : mesh(&m), material(mat), masses(std::move(node_masses)), damping_alpha(alpha), constrained(std::move(c)),
-      gravity_force(std::move(g)), K(small_strain_stiffness(m, mat)) {}
+      gravity_force(std::move(g)), removed(std::move(removed_elements)) {
+  if (removed.empty()) {
+    K = small_strain_stiffness(m, mat);
+    return;
+  }
+  mesh::TetMesh left;  // the same nodes, the elements a cut left
+  left.nodes = m.nodes;
+  for (int e = 0; e < m.num_tets(); ++e)
+    if (live(e)) left.tets.push_back(m.tets[e]);
+  K = small_strain_stiffness(left, mat);
+}
 
 ExchangeSecondary::ExchangeSecondary(const LinearModel& model, const PrimaryRegion& region, double step)
     : model_(&model), step_(step) {
@@ -95,7 +105,7 @@ CondensedSecondary::CondensedSecondary(const LinearModel& model, const PrimaryRe
   std::vector<char> primary(mesh.num_tets(), 0);
   for (int e : region.elements) primary[e] = 1;
   for (int e = 0; e < mesh.num_tets(); ++e)
-    if (!primary[e]) far.tets.push_back(mesh.tets[e]);
+    if (!primary[e] && model.live(e)) far.tets.push_back(mesh.tets[e]);
   std::vector<char> in_far(n, 0);
   for (const auto& t : far.tets)
     for (int i : t) in_far[i] = 1;

@@ -32,15 +32,19 @@ namespace softsim::regions {
 // What both couplings share: the mesh, the small-strain stiffness of every element and the
 // constrained dofs (held at zero), built once per scene.
 struct LinearModel {
+  // `removed` (per element, or empty): elements a cut took out, left out of K.
   LinearModel(const mesh::TetMesh& mesh, const fem::Material& material, std::vector<char> constrained,
-              Eigen::VectorXd gravity_force, std::vector<double> masses = {}, double damping_alpha = 0);
+              Eigen::VectorXd gravity_force, std::vector<double> masses = {}, double damping_alpha = 0,
+              std::vector<char> removed = {});
   const mesh::TetMesh* mesh;
   fem::Material material;
   std::vector<double> masses;       // lumped, per node (an implicit-dynamic secondary's inertia)
   double damping_alpha = 0;         // D = α M
   std::vector<char> constrained;    // per dof
   Eigen::VectorXd gravity_force;    // M g per dof at full gravity (zero without gravity)
+  std::vector<char> removed;        // per element: taken out by a cut (empty: none)
   Eigen::SparseMatrix<double> K;    // small-strain stiffness of the whole mesh
+  bool live(int element) const { return removed.empty() || !removed[element]; }
 };
 
 class ExchangeSecondary {
