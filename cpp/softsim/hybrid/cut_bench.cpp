@@ -65,27 +65,38 @@ nlohmann::json cut_bench(const mesh::TetMesh& mesh, const DhdConfig& c, int repe
   stepping.step(1);
   constexpr int kSteps = 200;
   const double step = best_of(repeats, [&] { stepping.step(kSteps); }) / kSteps;
-  double search = 1e300, update = 1e300;
+  // The cut: removal, or separation along faces (the first cut's mode) in a scene set up for it.
+  const CutMode mode = c.cuts.front().mode;
+  DhdConfig cutting_config = no_cuts;
+  cutting_config.separates = mode == CutMode::separate;
+  double search = 1e300, update = 1e300, prepare = 1e300;
   std::vector<int> removed;
+  std::shared_ptr<const mesh::TetMesh> separated;
+  std::size_t copies = 0;
+  int faces = 0;
   for (int r = 0; r < repeats; ++r) {
-    DhdScene s(shared, no_cuts, kinds);
-    const auto ev = s.cut(sweep);
+    DhdScene s(shared, cutting_config, kinds);
+    prepare = std::min(prepare, s.prepare_cuts());
+    const auto ev = s.cut(sweep, mode);
     search = std::min(search, ev.search_seconds);
-    update = std::min(update, ev.report.seconds);
+    update = std::min(update, mode == CutMode::separate ? ev.separation_seconds : ev.report.seconds);
     removed = ev.report.elements;
+    separated = s.mesh_ptr();
+    copies = ev.copies.size();
+    faces = ev.faces;
   }
   std::sort(removed.begin(), removed.end());
-  std::vector<fem::ElementKind> kinds_left;
-  const mesh::TetMesh cut_mesh = without(mesh, removed, kinds, kinds_left);
+  std::vector<fem::ElementKind> kinds_left = kinds;
+  const mesh::TetMesh cut_mesh = mode == CutMode::separate ? *separated : without(mesh, removed, kinds, kinds_left);
   const auto cut_shared = std::shared_ptr<const mesh::TetMesh>(&cut_mesh, [](const mesh::TetMesh*) {});
-  const double full_setup = best_of(repeats, [&] { DhdScene s(cut_shared, no_cuts, kinds_left); });
+  const double full_setup = best_of(repeats, [&] { DhdScene s(cut_shared, cutting_config, kinds_left); });
 
   // The precomputing methods: the linear stiffness of the cut mesh, constrained dofs out.
-  const std::vector<char> held = dynamics::constrained_mask(dynamics::resolve_constraints(c.scene, mesh.num_nodes()),
-                                                            mesh.num_nodes());
-  std::vector<int> index(3 * mesh.num_nodes(), -1);
+  const int n = cut_mesh.num_nodes();
+  const std::vector<char> held = dynamics::constrained_mask(dynamics::resolve_constraints(c.scene, n), n);
+  std::vector<int> index(3 * n, -1);
   int free = 0;
-  for (int q = 0; q < 3 * mesh.num_nodes(); ++q)
+  for (int q = 0; q < 3 * n; ++q)
     if (!held[q]) index[q] = free++;
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
   Eigen::SparseMatrix<double> K_free;
@@ -93,7 +104,7 @@ nlohmann::json cut_bench(const mesh::TetMesh& mesh, const DhdConfig& c, int repe
     const fem::Assembler linear(cut_mesh, std::vector<fem::ElementKind>(cut_mesh.num_tets(), fem::ElementKind::linear),
                                 c.material);
     Eigen::SparseMatrix<double> K = linear.pattern();
-    const std::vector<double> zero(3 * mesh.num_nodes(), 0.0);
+    const std::vector<double> zero(3 * n, 0.0);
     linear.tangent(zero.data(), K);
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(K.nonZeros());
@@ -120,10 +131,14 @@ nlohmann::json cut_bench(const mesh::TetMesh& mesh, const DhdConfig& c, int repe
   });
 
   return {{"mesh", {{"nodes", mesh.num_nodes()}, {"tets", mesh.num_tets()}}},
+          {"mode", mode == CutMode::separate ? "separate" : "remove"},
           {"elements_removed", removed.size()},
+          {"faces_opened", faces},
+          {"node_copies", copies},
           {"repeats", repeats},
           {"explicit", {{"setup_seconds", setup},
                         {"step_seconds", step},
+                        {"cut_prepare_seconds", prepare},
                         {"cut_search_seconds", search},
                         {"cut_update_seconds", update},
                         {"full_setup_on_cut_mesh_seconds", full_setup}}},

@@ -157,6 +157,13 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode,
   return ev;
 }
 
+double DhdScene::prepare_cuts() {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!cut_grid_) cut_grid_ = std::make_unique<cutting::ElementGrid>(*mesh_);
+  if (cut_mesh_ && !topology_) topology_ = std::make_unique<cutting::FaceTopology>(*mesh_);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // The faces between the elements on either side of the sweep open, by node copies: the plan
 // (which faces, which nodes), then the mesh, then the engine, each a local update.
 DhdScene::CutEvent DhdScene::separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed,

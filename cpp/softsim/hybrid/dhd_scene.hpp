@@ -104,6 +104,9 @@ class DhdScene {
   // regions publish it); null: the model's own.
   CutEvent cut(const cutting::BladeSweep& sweep, CutMode mode = CutMode::remove, const double* u = nullptr);
   const std::vector<CutEvent>& cut_events() const { return cut_events_; }
+  // Builds the structures the first cut would (the blade's element grid, and the face topology
+  // when the scene separates), so that a cut's time is its own; returns the seconds taken.
+  double prepare_cuts();
   bool removed(int element) const { return elements_ && elements_->removed(element); }
 
   // ---- static equilibrium of the same model (000 eq. 24) ----
