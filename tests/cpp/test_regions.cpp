@@ -15,6 +15,7 @@
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/regions/primary_region.hpp"
+#include "softsim/regions/secondary_region.hpp"
 
 #include "support/haptic_block.hpp"
 #include "support/scenes.hpp"
@@ -143,6 +144,64 @@ TEST(Regions, OnALinearModelBothCouplingsSettleOnTheWholeModelsForce) {
   EXPECT_LT(err_c, err_e);
 }
 
+// Guyan: a far field held by nothing but the interface moves rigidly with it (Ψ e = e), so the
+// mass it lays on the interface nodes is its whole mass, to round-off.
+TEST(CondensedSecondary, AFarFieldHeldOnlyByTheInterfaceLaysItsWholeMassOnIt) {
+  Block b;
+  const auto& m = *b.mesh;
+  int centre = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if ((m.nodes[i] - kTop).norm() < 1e-12) centre = i;
+  const regions::PrimaryRegion r = regions::select_primary_region(m, centre, 0.03);
+  const fem::Material material = b.config(10).material;
+  const std::vector<double> masses = dynamics::lumped_mass(m, material.elastic.density);
+  const regions::LinearModel linear(m, material, std::vector<char>(3 * m.num_nodes(), 0),
+                                    Eigen::VectorXd::Zero(3 * m.num_nodes()), masses);
+  regions::CondensedSecondary far(linear, r);
+  const std::vector<double> extra = far.interface_masses();
+  ASSERT_EQ(extra.size(), r.interface.size());
+  double far_mass = 0, laid = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (r.local[i] < 0) far_mass += masses[i];
+  for (double x : extra) {
+    EXPECT_GE(x, 0.0);
+    laid += x;
+  }
+  ASSERT_GT(far_mass, 0.1);
+  EXPECT_NEAR(laid, far_mass, 1e-9 * far_mass);
+}
+
+// Mass changes no equilibrium: with the far field's inertia on the interface the condensed
+// coupling still settles on the whole linear model's force; the single-precision interface
+// product follows the double one to the float's rounding.
+TEST(Regions, TheFarFieldsInertiaAndSinglePrecisionKeepTheStaticAnswer) {
+  Block b;
+  const haptic::ProbePath path = press_down(kTop, 0.006, 0.2);
+  const long frames = 4000;
+  haptic::HapticScene whole(b.mesh, b.config(40, "linear"), whole_model());
+  const Eigen::Vector3d expected = haptic::run_haptic(whole, path, frames).force.back();
+  auto guyan = with_regions(0.03, regions::Coupling::condensed, 10);
+  guyan.regions.far_field_mass = true;
+  haptic::HapticScene inertial(b.mesh, b.config(40, "linear"), guyan);
+  const auto rg = haptic::run_haptic(inertial, path, frames);
+  ASSERT_TRUE(inertial.events().empty());
+  EXPECT_LT((rg.force.back() - expected).norm(), 1e-6 * expected.norm())
+      << rg.force.back().transpose() << " vs " << expected.transpose();
+  haptic::HapticScene plain(b.mesh, b.config(40, "linear"), with_regions(0.03, regions::Coupling::condensed, 10));
+  auto single = with_regions(0.03, regions::Coupling::condensed, 10);
+  single.regions.single_precision = true;
+  haptic::HapticScene reduced(b.mesh, b.config(40, "linear"), single);
+  const auto rp = haptic::run_haptic(plain, path, 600);
+  const auto rs = haptic::run_haptic(reduced, path, 600);
+  double largest = 0, peak = 0;
+  for (int k = 0; k < 600; ++k) {
+    largest = std::max(largest, (rs.force[k] - rp.force[k]).norm());
+    peak = std::max(peak, rp.force[k].norm());
+  }
+  EXPECT_LT(largest, 1e-5 * peak) << largest << " N of " << peak << " N";
+  EXPECT_GT(largest, 0.0);  // it did run in single precision
+}
+
 TEST(Regions, ASlidingContactMovesTheRegionWithoutAForceJump) {
   Block b;
   haptic::HapticScene scene(b.mesh, b.config(40), with_regions(0.025, regions::Coupling::condensed, 10));
@@ -197,6 +256,10 @@ TEST(Regions, BadRegionInputIsRefused) {
                                         nlohmann::json{{"radius", 0.02}, {"coupling", "iterate"}},
                                         nlohmann::json{{"radius", 0.02}, {"secondary_every", 0}},
                                         nlohmann::json{{"radius", 0.02}, {"skip_below", -1}},
+                                        nlohmann::json{{"radius", 0.02}, {"coupling", "exchange"}, {"secondary", "guyan"}},
+                                        nlohmann::json{{"radius", 0.02}, {"secondary", "implicit"}},
+                                        nlohmann::json{{"radius", 0.02}, {"coupling", "exchange"}, {"precision", "single"}},
+                                        nlohmann::json{{"radius", 0.02}, {"precision", "half"}},
                                         nlohmann::json{{"radius", 0.02}, {"unknown", 1}}}) {
     const nlohmann::json cfg = {{"model", model}, {"probe", {{"stiffness", 100}}}, {"input", input}, {"regions", regions}};
     try {

@@ -87,6 +87,8 @@ nlohmann::json regions_payload(const HapticScene& scene) {
                         {"frames_per_level", t->frames_per_level()}}},
           {"secondary_every", o.secondary_every},
           {"interpolate", o.interpolate},
+          {"secondary", o.secondary_dynamic ? "implicit" : o.far_field_mass ? "guyan" : "static"},
+          {"precision", o.single_precision ? "single" : "double"},
           {"skip_below", o.skip_below},
           {"primary", region},
           {"builds", b.builds},
@@ -97,7 +99,8 @@ nlohmann::json regions_payload(const HapticScene& scene) {
           {"secondary_updates", st.secondary_updates},
           {"secondary_skipped", st.secondary_skipped},
           {"secondary_seconds_total", st.secondary_seconds},
-          {"secondary_seconds_max", st.secondary_max_seconds}};
+          {"secondary_seconds_max", st.secondary_max_seconds},
+          {"interface_seconds_total", st.interface_seconds}};
 }
 
 }  // namespace
@@ -130,6 +133,7 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
       {"probe_stiffness", scene.options().probe_stiffness},
       {"contact_mode", scene.options().contact == ContactMode::push   ? "push"
                        : scene.options().contact == ContactMode::tool ? "tool"
+                       : scene.options().contact == ContactMode::attach ? "attach"
                                                                       : "grasp"},
       {"frames", record.frames},
       {"time", record.time},
