@@ -16,12 +16,12 @@ def timing(mean):
             "frame_seconds_max": mean, "deadline_misses": 0}
 
 
-def liver_run(force, contact, law, inp, events=0, regions=None, mean=1e-3):
+def liver_run(force, contact, law, inp, events=0, regions=None, mean=1e-3, k=20):
     payload = {"force": force.tolist(), "time": list(np.arange(len(force)) * 1e-3), "timing": timing(mean),
                "events": [{"frame": 1, "message": "inverted"}] * events, "substeps": 4}
     if regions:
         payload["regions"] = regions
-    return run(payload, {"probe": {"contact": contact}, "model": {"material": {"model": law}}, "input": inp})
+    return run(payload, {"probe": {"contact": contact, "stiffness": k}, "model": {"material": {"model": law}}, "input": inp})
 
 
 def test_inputs_are_named_by_kind_and_ramp():
@@ -34,11 +34,13 @@ def test_each_run_meets_its_own_reference_and_restarts_have_none(tmp_path):
     t = np.linspace(0, 1, 100)
     w = np.stack([0 * t, 0 * t, np.minimum(t / 0.6, 1.0)], axis=1)
     runs = {"whole": [liver_run(w, "attach", "linear", SLOW), liver_run(w, "attach", "linear", CHIRP),
-                      liver_run(2 * w, "attach", "neo_hookean_paper", SLOW, events=3)],
+                      liver_run(2 * w, "attach", "neo_hookean_paper", SLOW, events=3),
+                      liver_run(w, "attach", "linear", SLOW, events=5, k=100)],
             # linear slow press: exact at the end (the last 40 frames equal), 10 % off during the ramp
             "condensed": [liver_run(np.where(t[:, None] < 0.6, 1.1 * w, w), "attach", "linear", SLOW),
                           liver_run(1.2 * w, "attach", "linear", CHIRP),
-                          liver_run(2 * w, "attach", "neo_hookean_paper", SLOW)],
+                          liver_run(2 * w, "attach", "neo_hookean_paper", SLOW),
+                          liver_run(w, "attach", "linear", SLOW, k=100)],
             "guyan": [liver_run(1.05 * w, "attach", "linear", CHIRP)]}
     ctx = FakeContext(tmp_path, runs=runs)
     rep.report(ctx)
@@ -50,6 +52,8 @@ def test_each_run_meets_its_own_reference_and_restarts_have_none(tmp_path):
     text = (tmp_path / "regions_liver_summary.md").read_text()
     assert "exact at equilibrium" in text and "has a bug" not in text
     assert "no reference" in text  # the neo-Hookean whole model restarted
+    assert "the probe's spring, 100 N/m:** the whole model itself has events" in text
+    assert "restarted in 1 of 1 runs" in text
     assert "linear, attached). Condensed massless" in text
     assert (tmp_path / "regions_liver.md").exists() and (tmp_path / "regions_liver_forces.png").exists()
     # A condensation that misses the linear equilibrium is called out.
