@@ -1,5 +1,6 @@
 // Linked asynchronous regions in 3-D (001 §5 on the dhd_sim engine): a primary region covering
-// the mesh is the whole model, bit for bit; with a linear model, the condensed coupling settles
+// the mesh is the whole model, bit for bit; the far field's Guyan mass is its whole mass when only
+// the interface holds it, and vanishes with it; with a linear model, the condensed coupling settles
 // exactly on the whole model's static answer and the exchange of 001 eq. 7 converges to it;
 // a sliding contact moves the region without a force jump; skipping a secondary update that
 // nothing moved is counted; bad region input is refused.
@@ -94,12 +95,19 @@ TEST(Regions, APrimaryRegionCoveringTheMeshIsTheWholeModelBitForBit) {
   const haptic::ProbePath path = press_down(kTop, 0.008, 0.2);
   haptic::HapticScene whole(b.mesh, b.config(15), whole_model());
   haptic::HapticScene all(b.mesh, b.config(15), with_regions(1.0, regions::Coupling::condensed, 10));
+  auto guyan = with_regions(1.0, regions::Coupling::condensed, 10);
+  guyan.regions.far_field_mass = true;  // no far field: no mass to add
+  haptic::HapticScene all_guyan(b.mesh, b.config(15), guyan);
   const auto rw = haptic::run_haptic(whole, path, 400);
   const auto ra = haptic::run_haptic(all, path, 400);
+  const auto rg = haptic::run_haptic(all_guyan, path, 400);
   ASSERT_NE(all.regions(), nullptr);
   EXPECT_TRUE(all.regions()->active()->region().interface.empty());
   for (std::size_t k = 0; k < rw.force.size(); ++k)
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(rw.force[k][c], ra.force[k][c]) << "frame " << k;
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(rw.force[k][c], ra.force[k][c]) << "frame " << k;
+      ASSERT_EQ(rw.force[k][c], rg.force[k][c]) << "frame " << k;
+    }
 }
 
 // With a linear model the primary region is linear too, and the condensed secondary is its
@@ -169,6 +177,13 @@ TEST(CondensedSecondary, AFarFieldHeldOnlyByTheInterfaceLaysItsWholeMassOnIt) {
   }
   ASSERT_GT(far_mass, 0.1);
   EXPECT_NEAR(laid, far_mass, 1e-9 * far_mass);
+  // Linear in the far field's masses: as they go to zero, the static condensation is left.
+  std::vector<double> light = masses;
+  for (double& x : light) x *= 1e-6;
+  const regions::LinearModel light_linear(m, material, std::vector<char>(3 * m.num_nodes(), 0),
+                                          Eigen::VectorXd::Zero(3 * m.num_nodes()), light);
+  const std::vector<double> light_extra = regions::CondensedSecondary(light_linear, r).interface_masses();
+  for (std::size_t a = 0; a < extra.size(); ++a) EXPECT_NEAR(light_extra[a], 1e-6 * extra[a], 1e-12 * extra[a] + 1e-300);
 }
 
 // Mass changes no equilibrium: with the far field's inertia on the interface the condensed
