@@ -78,3 +78,11 @@ def test_the_refined_liver_frame_time_is_split_as_measured(tmp_path):
     assert "of which the interface product 8 ms (40 %) and the far field's recovery 5 ms (25 %)" in text
     assert "of which the interface product 4 ms (25 %)" in text
     assert "the 1 kHz target is not met on this machine" in text
+
+
+def test_chatter_is_the_largest_frame_to_frame_change_of_the_force():
+    smooth = np.stack([np.zeros(5), np.zeros(5), np.linspace(0, 1, 5)], axis=1)
+    assert np.isclose(rep.chatter(smooth), 25.0)
+    flipping = smooth.copy()
+    flipping[3, 2] = 0.0
+    assert np.isclose(rep.chatter(flipping), 100.0)
