@@ -210,7 +210,8 @@ def summary_lines(rows, fine):
         exact = lin["end"] < 0.01
         line = (f"- **quasi-static.** Slow press (1.5 s ramp, held 1 s), attached: with linear elements everywhere the "
                 f"condensed far field ends {lin['end']:.2g} % from the whole model "
-                + ("(the condensation is exact at equilibrium on the liver's curved mesh as on the cuboid)"
+                + ("(what the damped settling leaves: the condensation is exact at equilibrium on the liver's curved "
+                   "mesh as on the cuboid)"
                    if exact else "(not exact: the condensation has a bug on this mesh)")
                 + f", {lin['rms']:.3g} % RMS over the press")
         if stab is not None:
