@@ -171,10 +171,11 @@ def report(ctx):
                     "Refined liver, attached probe, stable neo-Hookean law, 001's chirp; the condensed regions' frame "
                     "time and the part of it spent in the interface product (-S u_I, every substep). One thread on "
                     f"{cpu_description()} while other work ran: upper bounds.")
-    ctx.out("regions_liver_summary.md").write_text("\n".join(summary_lines(rows, fine)) + "\n")
+    realtime = runs_of(ctx, "fine_realtime")
+    ctx.out("regions_liver_summary.md").write_text("\n".join(summary_lines(rows, fine, realtime)) + "\n")
 
 
-def summary_lines(rows, fine):
+def summary_lines(rows, fine, realtime=()):
     L = ["## Why the regions miss the liver: the causes one at a time", "",
          "The liver held at one end, the condensed regions (radius 3.5 cm) against the whole model with the same "
          "contact, law and input; RMS force error relative to the whole model's peak force "
@@ -245,6 +246,16 @@ def summary_lines(rows, fine):
                      f"{r['misses']} of {r['frames']} frames over 1 ms; "
                      f"{fmt_run(r)} against the whole model ({1e3 * r['whole_mean']:.3g} ms per frame).")
         L += ["", "In plain words: " + fine_words(fine)]
+    for run in realtime:
+        p = run.payload
+        rt = np.array(p["round_trip_seconds"])
+        reg = p["regions"] or {}
+        L += ["", f"Real-time loop (`haptic_sim serve` over a pipe, paced at 1 kHz for {len(rt) / 1000:g} s, a press "
+              f"held; radius {reg.get('radius', float('nan')):g} m, {FAR.get(reg.get('secondary'), '')}, "
+              f"{reg.get('precision', '')} precision, no pictures): round trip median {1e3 * np.median(rt):.3g} ms, "
+              f"p99 {1e3 * np.percentile(rt, 99):.3g} ms, max {1e3 * rt.max():.3g} ms; {int((rt > 1e-3).sum())} of "
+              f"{len(rt)} answers later than 1 ms; compute per frame p50 {1e3 * p['timing']['frame_seconds_p50']:.3g} ms, "
+              f"p99 {1e3 * p['timing']['frame_seconds_p99']:.3g} ms; {p['events']} events."]
     return L
 
 

@@ -73,8 +73,12 @@ def test_the_refined_liver_frame_time_is_split_as_measured(tmp_path):
                                          mean=0.02),
                                liver_run(w, "attach", "stable_neo_hookean", CHIRP, regions=regions("single", 0.04),
                                          mean=0.016)]}
+    served = {"round_trip_seconds": [2e-4] * 998 + [3e-3, 4e-3], "timing": timing(1e-4), "events": 0,
+              "regions": {"radius": 0.015, "secondary": "guyan", "precision": "single"}}
+    runs["fine_realtime"] = [run(served)]
     rep.report(FakeContext(tmp_path, runs=runs))
     text = (tmp_path / "regions_liver_summary.md").read_text()
+    assert "2 of 1000 answers later than 1 ms" in text and "Guyan mass, single precision" in text
     assert "of which the interface product 8 ms (40 %) and the far field's recovery 5 ms (25 %)" in text
     assert "of which the interface product 4 ms (25 %)" in text
     assert "the 1 kHz target is not met on this machine" in text
