@@ -255,7 +255,9 @@ def summary_lines(rows, fine, realtime=()):
               f"{reg.get('precision', '')} precision, no pictures): round trip median {1e3 * np.median(rt):.3g} ms, "
               f"p99 {1e3 * np.percentile(rt, 99):.3g} ms, max {1e3 * rt.max():.3g} ms; {int((rt > 1e-3).sum())} of "
               f"{len(rt)} answers later than 1 ms; compute per frame p50 {1e3 * p['timing']['frame_seconds_p50']:.3g} ms, "
-              f"p99 {1e3 * p['timing']['frame_seconds_p99']:.3g} ms; {p['events']} events."]
+              f"p99 {1e3 * p['timing']['frame_seconds_p99']:.3g} ms; {p['events']} events"
+              + (f"; the first answer waited for the region's set-up ({reg['build_seconds_max']:.3g} s, built at the "
+                 "first contact)" if reg.get("build_seconds_max") else "") + "."]
     return L
 
 
