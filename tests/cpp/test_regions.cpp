@@ -286,6 +286,24 @@ TEST(Regions, BadRegionInputIsRefused) {
   }
 }
 
+TEST(Regions, TheAttachedContactAndTheFarFieldOptionsAreRead) {
+  Block b;
+  const nlohmann::json model = {{"mesh", "unused"},
+                                {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                                {"boundary", {{"fixed", {{{"set", "bottom"}}}}}}};
+  const nlohmann::json input = {{"kind", "press"}, {"start", {0.05, 0.05, 0.06}}, {"direction", {0, 0, -1}},
+                                {"depth", 0.005}, {"ramp_time", 0.2}};
+  const nlohmann::json cfg = {{"model", model},
+                              {"probe", {{"stiffness", 20}, {"contact", "attach"}}},
+                              {"input", input},
+                              {"regions", {{"radius", 0.02}, {"secondary", "guyan"}, {"precision", "single"}}}};
+  const haptic::HapticConfig c = haptic::read_haptic_config(io::JsonReader(cfg, "scene.json"), *b.mesh);
+  EXPECT_EQ(c.options.contact, haptic::ContactMode::attach);
+  EXPECT_TRUE(c.options.regions.far_field_mass);
+  EXPECT_TRUE(c.options.regions.single_precision);
+  EXPECT_FALSE(c.options.regions.secondary_dynamic);
+}
+
 // 001 Fig. 5: the primary radius follows the contact's displacement (a gradient, a minimum and a
 // maximum), one region per size level, handed over without a force jump.
 TEST(Regions, TheAdaptiveRadiusGrowsWithThePressWithoutAForceJump) {
