@@ -24,14 +24,15 @@ int main(int argc, char** argv) {
   info.config_help =
       "  {\"model\": {a dhd_sim config with an explicit solver and no probe},\n"
       "   \"frame_rate\": 1000 Hz, \"frames\": 1000 (run),\n"
-      "   \"probe\": {\"stiffness\": N/m, \"contact\": \"grasp\"|\"push\"} | {\"contact\": \"tool\", \"tool_offset\": [x,y,z]},\n"
+      "   \"probe\": {\"stiffness\": N/m, \"contact\": \"grasp\"|\"attach\"|\"push\"} | {\"contact\": \"tool\", \"tool_offset\": [x,y,z]},\n"
       "   \"input\": {\"kind\": \"press\", \"start\": [x,y,z], \"direction\": [x,y,z], \"depth\": m, \"ramp_time\": s}\n"
       "            | {\"kind\": \"slide\", ... as press, \"slide_direction\": [x,y,z], \"speed\": m/s}\n"
       "            | {\"kind\": \"growing_sine\", \"start\", \"direction\", \"amplitude\": m, \"frequency\": Hz, \"growth_time\": s}\n"
       "            | {\"kind\": \"chirp\", \"start\", \"direction\", \"amplitude\": m, \"start_frequency\": Hz, \"end_frequency\": Hz, \"sweep_time\": s}\n"
       "            | {\"kind\": \"recorded\", \"path\": \"file of lines t x y z\"},\n"
       "   \"regions\": {\"radius\": m, \"coupling\": \"condensed\"|\"exchange\", \"secondary_every\": 10, \"interpolate\": true,\n"
-      "               \"skip_below\": 0 m, \"tool_margin\": m (contact tool), \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
+      "               \"secondary\": \"static\"|\"implicit\"|\"guyan\", \"precision\": \"double\"|\"single\", \"skip_below\": 0 m,\n"
+      "               \"tool_margin\": m (contact tool), \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
       "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s,\n"
       "                 \"visual\": {\"path\": FILE, \"every\": 33}}}   (serve)\n"
       "  Full reference: cpp/apps/haptic_sim.md";

@@ -203,6 +203,34 @@ TEST(HapticScene, SlidingCrossesTrianglesWithoutAForceJump) {
   EXPECT_NEAR(scene.contact().position.x(), path.at(1.699).x(), 0.003);
 }
 
+// Attached (a probe glued to the point it first touches): the same slide never leaves the first
+// contact triangle, the material point stays at its weights, and the spring stretches along
+// the slide, so the tangential force grows, where the frictionless grasp slid with the tip.
+TEST(HapticScene, AnAttachedContactHoldsItsMaterialPointWhileTheTipSlides) {
+  Block b;
+  auto options = spring(100);
+  options.contact = haptic::ContactMode::attach;
+  haptic::HapticScene scene(b.mesh, b.config(40), options);
+  haptic::ProbePath path = press_down({0.031, 0.052, 0.05}, 0.005, 0.2);
+  path.kind = haptic::ProbePath::Kind::slide;
+  path.slide_direction = Eigen::Vector3d::UnitX();
+  path.slide_speed = 0.02;
+  scene.frame(path.at(0));
+  const int triangle = scene.contact().triangle;
+  const auto weights = scene.contact().weights;
+  Eigen::Vector3d f = Eigen::Vector3d::Zero();
+  for (long k = 1; k < 700; ++k) {
+    f = scene.frame(path.at(k * 1e-3));
+    ASSERT_EQ(scene.contact().triangle, triangle) << "frame " << k;
+    ASSERT_EQ(scene.contact().weights, weights) << "frame " << k;
+  }
+  ASSERT_TRUE(scene.events().empty());
+  // The tip is 1 cm ahead in x (0.5 s at 2 cm/s) and the tissue holds it back: the force on the
+  // tool points along -x, a tangential force the frictionless grasp cannot transmit.
+  EXPECT_LT(f.x(), -0.1 * f.norm()) << f.transpose();
+  EXPECT_GT(path.at(0.699).x() - scene.contact().position.x(), 0.002);
+}
+
 TEST(HapticScene, AFailurePastInversionIsReportedAndTheFramesGoOn) {
   Block b;
   haptic::HapticScene scene(b.mesh, b.config(10), spring(1e4));

@@ -1,5 +1,6 @@
 // Linked asynchronous regions in 3-D (001 §5 on the dhd_sim engine): a primary region covering
-// the mesh is the whole model, bit for bit; with a linear model, the condensed coupling settles
+// the mesh is the whole model, bit for bit; the far field's Guyan mass is its whole mass when only
+// the interface holds it, and vanishes with it; with a linear model, the condensed coupling settles
 // exactly on the whole model's static answer and the exchange of 001 eq. 7 converges to it;
 // a sliding contact moves the region without a force jump; skipping a secondary update that
 // nothing moved is counted; bad region input is refused.
@@ -15,6 +16,7 @@
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/regions/primary_region.hpp"
+#include "softsim/regions/secondary_region.hpp"
 
 #include "support/haptic_block.hpp"
 #include "support/scenes.hpp"
@@ -93,12 +95,19 @@ TEST(Regions, APrimaryRegionCoveringTheMeshIsTheWholeModelBitForBit) {
   const haptic::ProbePath path = press_down(kTop, 0.008, 0.2);
   haptic::HapticScene whole(b.mesh, b.config(15), whole_model());
   haptic::HapticScene all(b.mesh, b.config(15), with_regions(1.0, regions::Coupling::condensed, 10));
+  auto guyan = with_regions(1.0, regions::Coupling::condensed, 10);
+  guyan.regions.far_field_mass = true;  // no far field: no mass to add
+  haptic::HapticScene all_guyan(b.mesh, b.config(15), guyan);
   const auto rw = haptic::run_haptic(whole, path, 400);
   const auto ra = haptic::run_haptic(all, path, 400);
+  const auto rg = haptic::run_haptic(all_guyan, path, 400);
   ASSERT_NE(all.regions(), nullptr);
   EXPECT_TRUE(all.regions()->active()->region().interface.empty());
   for (std::size_t k = 0; k < rw.force.size(); ++k)
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(rw.force[k][c], ra.force[k][c]) << "frame " << k;
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(rw.force[k][c], ra.force[k][c]) << "frame " << k;
+      ASSERT_EQ(rw.force[k][c], rg.force[k][c]) << "frame " << k;
+    }
 }
 
 // With a linear model the primary region is linear too, and the condensed secondary is its
@@ -141,6 +150,71 @@ TEST(Regions, OnALinearModelBothCouplingsSettleOnTheWholeModelsForce) {
     err_e = std::max(err_e, (re.force[k] - rw.force[k]).norm());
   }
   EXPECT_LT(err_c, err_e);
+}
+
+// Guyan: a far field held by nothing but the interface moves rigidly with it (Ψ e = e), so the
+// mass it lays on the interface nodes is its whole mass, to round-off.
+TEST(CondensedSecondary, AFarFieldHeldOnlyByTheInterfaceLaysItsWholeMassOnIt) {
+  Block b;
+  const auto& m = *b.mesh;
+  int centre = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if ((m.nodes[i] - kTop).norm() < 1e-12) centre = i;
+  const regions::PrimaryRegion r = regions::select_primary_region(m, centre, 0.03);
+  const fem::Material material = b.config(10).material;
+  const std::vector<double> masses = dynamics::lumped_mass(m, material.elastic.density);
+  const regions::LinearModel linear(m, material, std::vector<char>(3 * m.num_nodes(), 0),
+                                    Eigen::VectorXd::Zero(3 * m.num_nodes()), masses);
+  regions::CondensedSecondary far(linear, r);
+  const std::vector<double> extra = far.interface_masses();
+  ASSERT_EQ(extra.size(), r.interface.size());
+  double far_mass = 0, laid = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (r.local[i] < 0) far_mass += masses[i];
+  for (double x : extra) {
+    EXPECT_GE(x, 0.0);
+    laid += x;
+  }
+  ASSERT_GT(far_mass, 0.1);
+  EXPECT_NEAR(laid, far_mass, 1e-9 * far_mass);
+  // Linear in the far field's masses: as they go to zero, the static condensation is left.
+  std::vector<double> light = masses;
+  for (double& x : light) x *= 1e-6;
+  const regions::LinearModel light_linear(m, material, std::vector<char>(3 * m.num_nodes(), 0),
+                                          Eigen::VectorXd::Zero(3 * m.num_nodes()), light);
+  const std::vector<double> light_extra = regions::CondensedSecondary(light_linear, r).interface_masses();
+  for (std::size_t a = 0; a < extra.size(); ++a) EXPECT_NEAR(light_extra[a], 1e-6 * extra[a], 1e-12 * extra[a] + 1e-300);
+}
+
+// Mass changes no equilibrium: with the far field's inertia on the interface the condensed
+// coupling still settles on the whole linear model's force; the single-precision interface
+// product follows the double one to the float's rounding.
+TEST(Regions, TheFarFieldsInertiaAndSinglePrecisionKeepTheStaticAnswer) {
+  Block b;
+  const haptic::ProbePath path = press_down(kTop, 0.006, 0.2);
+  const long frames = 4000;
+  haptic::HapticScene whole(b.mesh, b.config(40, "linear"), whole_model());
+  const Eigen::Vector3d expected = haptic::run_haptic(whole, path, frames).force.back();
+  auto guyan = with_regions(0.03, regions::Coupling::condensed, 10);
+  guyan.regions.far_field_mass = true;
+  haptic::HapticScene inertial(b.mesh, b.config(40, "linear"), guyan);
+  const auto rg = haptic::run_haptic(inertial, path, frames);
+  ASSERT_TRUE(inertial.events().empty());
+  EXPECT_LT((rg.force.back() - expected).norm(), 1e-6 * expected.norm())
+      << rg.force.back().transpose() << " vs " << expected.transpose();
+  haptic::HapticScene plain(b.mesh, b.config(40, "linear"), with_regions(0.03, regions::Coupling::condensed, 10));
+  auto single = with_regions(0.03, regions::Coupling::condensed, 10);
+  single.regions.single_precision = true;
+  haptic::HapticScene reduced(b.mesh, b.config(40, "linear"), single);
+  const auto rp = haptic::run_haptic(plain, path, 600);
+  const auto rs = haptic::run_haptic(reduced, path, 600);
+  double largest = 0, peak = 0;
+  for (int k = 0; k < 600; ++k) {
+    largest = std::max(largest, (rs.force[k] - rp.force[k]).norm());
+    peak = std::max(peak, rp.force[k].norm());
+  }
+  EXPECT_LT(largest, 1e-5 * peak) << largest << " N of " << peak << " N";
+  EXPECT_GT(largest, 0.0);  // it did run in single precision
 }
 
 TEST(Regions, ASlidingContactMovesTheRegionWithoutAForceJump) {
@@ -205,6 +279,10 @@ TEST(Regions, BadRegionInputIsRefused) {
                                         nlohmann::json{{"radius", 0.02}, {"coupling", "iterate"}},
                                         nlohmann::json{{"radius", 0.02}, {"secondary_every", 0}},
                                         nlohmann::json{{"radius", 0.02}, {"skip_below", -1}},
+                                        nlohmann::json{{"radius", 0.02}, {"coupling", "exchange"}, {"secondary", "guyan"}},
+                                        nlohmann::json{{"radius", 0.02}, {"secondary", "implicit"}},
+                                        nlohmann::json{{"radius", 0.02}, {"coupling", "exchange"}, {"precision", "single"}},
+                                        nlohmann::json{{"radius", 0.02}, {"precision", "half"}},
                                         nlohmann::json{{"radius", 0.02}, {"unknown", 1}}}) {
     const nlohmann::json cfg = {{"model", model}, {"probe", {{"stiffness", 100}}}, {"input", input}, {"regions", regions}};
     try {
@@ -214,6 +292,24 @@ TEST(Regions, BadRegionInputIsRefused) {
       EXPECT_NE(std::string(e.what()).find("/regions"), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(Regions, TheAttachedContactAndTheFarFieldOptionsAreRead) {
+  Block b;
+  const nlohmann::json model = {{"mesh", "unused"},
+                                {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                                {"boundary", {{"fixed", {{{"set", "bottom"}}}}}}};
+  const nlohmann::json input = {{"kind", "press"}, {"start", {0.05, 0.05, 0.06}}, {"direction", {0, 0, -1}},
+                                {"depth", 0.005}, {"ramp_time", 0.2}};
+  const nlohmann::json cfg = {{"model", model},
+                              {"probe", {{"stiffness", 20}, {"contact", "attach"}}},
+                              {"input", input},
+                              {"regions", {{"radius", 0.02}, {"secondary", "guyan"}, {"precision", "single"}}}};
+  const haptic::HapticConfig c = haptic::read_haptic_config(io::JsonReader(cfg, "scene.json"), *b.mesh);
+  EXPECT_EQ(c.options.contact, haptic::ContactMode::attach);
+  EXPECT_TRUE(c.options.regions.far_field_mass);
+  EXPECT_TRUE(c.options.regions.single_precision);
+  EXPECT_FALSE(c.options.regions.secondary_dynamic);
 }
 
 // 001 Fig. 5: the primary radius follows the contact's displacement (a gradient, a minimum and a

@@ -91,14 +91,17 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
   const double rate = cfg.get_positive("frame_rate", 1000.0);
   c.options.frame_step = 1.0 / rate;
   const io::JsonReader probe = cfg.at("probe");
-  const std::string contact = probe.get_choice("contact", {"grasp", "push", "tool"}, "grasp");
-  c.options.contact = contact == "push" ? ContactMode::push : contact == "tool" ? ContactMode::tool : ContactMode::grasp;
+  const std::string contact = probe.get_choice("contact", {"grasp", "attach", "push", "tool"}, "grasp");
+  c.options.contact = contact == "push"     ? ContactMode::push
+                      : contact == "tool"   ? ContactMode::tool
+                      : contact == "attach" ? ContactMode::attach
+                                            : ContactMode::grasp;
   if (c.options.contact == ContactMode::tool) {
     // The rigid tool's own contact makes the force: a coupling spring would be a second model of it.
     if (probe.has("stiffness")) probe.fail_member("stiffness", "no stiffness with contact \"tool\" (the rigid tool's contact gives the force)");
     if (probe.has("tool_offset")) c.options.tool_offset = read_vec3(probe, "tool_offset");
     if (c.model.scene.tools.empty())
-      probe.fail_member("contact", "\"grasp\" or \"push\", or a model with a rigid tool (model.boundary.tools) for \"tool\"");
+      probe.fail_member("contact", "\"grasp\", \"attach\" or \"push\", or a model with a rigid tool (model.boundary.tools) for \"tool\"");
   } else {
     c.options.probe_stiffness = probe.get_positive("stiffness");
   }
@@ -131,9 +134,18 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
     o.secondary_every = r->get_int32("secondary_every", o.secondary_every);
     r->require(o.secondary_every >= 1 && o.secondary_every <= 1000000, "secondary_every", "a frame count in [1, 10^6]");
     o.interpolate = r->get_bool("interpolate", o.interpolate);
-    o.secondary_dynamic = r->get_choice("secondary", {"static", "implicit"}, "static") == "implicit";
+    const std::string secondary = r->get_choice("secondary", {"static", "implicit", "guyan"}, "static");
+    o.secondary_dynamic = secondary == "implicit";
+    o.far_field_mass = secondary == "guyan";
     if (o.secondary_dynamic && o.coupling != regions::Coupling::exchange)
-      r->fail_member("secondary", "\"static\" with the condensed coupling (an implicit-dynamic secondary needs \"exchange\")");
+      r->fail_member("secondary", "\"static\" or \"guyan\" with the condensed coupling (an implicit-dynamic secondary needs \"exchange\")");
+    if (o.far_field_mass && o.coupling != regions::Coupling::condensed)
+      r->fail_member("secondary", "\"static\" or \"implicit\" with the exchange coupling (\"guyan\" needs \"condensed\")");
+    o.single_precision = r->get_choice("precision", {"double", "single"}, "double") == "single";
+    if (o.single_precision && o.coupling != regions::Coupling::condensed)
+      r->fail_member("precision", "\"double\" with the exchange coupling (\"single\" is the condensed interface product)");
+    if (o.far_field_mass && !c.model.scene.gravity.isZero())
+      r->fail_member("secondary", "no \"guyan\" with gravity (the far field's weight is condensed already)");
     if (r->has("tool_margin")) {
       if (c.options.contact != ContactMode::tool)
         r->fail_member("tool_margin", "no tool_margin without probe.contact \"tool\" (it sizes the region around the tool)");

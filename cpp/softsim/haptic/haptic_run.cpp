@@ -102,6 +102,8 @@ nlohmann::json regions_payload(const HapticScene& scene) {
                         {"frames_per_level", t->frames_per_level()}}},
           {"secondary_every", o.secondary_every},
           {"interpolate", o.interpolate},
+          {"secondary", o.secondary_dynamic ? "implicit" : o.far_field_mass ? "guyan" : "static"},
+          {"precision", o.single_precision ? "single" : "double"},
           {"skip_below", o.skip_below},
           {"primary", region},
           {"builds", b.builds},
@@ -115,7 +117,8 @@ nlohmann::json regions_payload(const HapticScene& scene) {
           {"secondary_seconds_max", st.secondary_max_seconds},
           {"tool_covers", b.tool_covers},
           {"late_contacts", b.late_contacts},
-          {"topology", topology}};
+          {"topology", topology},
+          {"interface_seconds_total", st.interface_seconds}};
 }
 
 }  // namespace
@@ -152,6 +155,7 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
       {"probe_stiffness", scene.options().probe_stiffness},
       {"contact_mode", scene.options().contact == ContactMode::push   ? "push"
                        : scene.options().contact == ContactMode::tool ? "tool"
+                       : scene.options().contact == ContactMode::attach ? "attach"
                                                                       : "grasp"},
       {"frames", record.frames},
       {"time", record.time},

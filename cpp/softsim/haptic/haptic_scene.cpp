@@ -180,12 +180,14 @@ void HapticScene::follow_cuts() {
 
 void HapticScene::update_contact(const Eigen::Vector3d& probe, const double* u) {
   if (in_contact_) {
-    contact_ = surface_->closest_near(probe, u, contact_);
+    // Attached: the same material point wherever the tip goes; else the closest point (frictionless).
+    contact_ = options_.contact == ContactMode::attach ? surface_->at(contact_.triangle, contact_.weights, u)
+                                                       : surface_->closest_near(probe, u, contact_);
     return;
   }
   const SurfacePoint s = surface_->closest(probe, u);
-  // Grasp: the first frame takes hold; push: only a tip at or below the surface touches it.
-  if (options_.contact == ContactMode::grasp || (probe - s.position).dot(s.normal) <= 0) {
+  // Grasp, attach: the first frame takes hold; push: only a tip at or below the surface touches it.
+  if (options_.contact != ContactMode::push || (probe - s.position).dot(s.normal) <= 0) {
     in_contact_ = true;
     contact_ = s;
   }

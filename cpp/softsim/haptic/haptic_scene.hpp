@@ -28,6 +28,8 @@ namespace softsim::haptic {
 
 enum class ContactMode {
   grasp,  // the tip holds the surface point it first touches (forceps): pulls as well as pushes
+  attach, // as grasp, but glued: the spring pulls the same material point (triangle and
+          // barycentric weights of the first touch) for the whole contact, it never slides
   push,   // unilateral: contact starts when the tip is below the surface, ends when it would pull
   tool,   // the model's first rigid tool (boundary.tools) sits at the tip; the force the tissue
           // exerts on it (frictionless contact with its surface nodes) goes to the device

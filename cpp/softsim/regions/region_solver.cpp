@@ -38,6 +38,14 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
   if (options.secondary_dynamic && options.coupling != Coupling::exchange)
     throw InputError("regions: an implicit-dynamic secondary needs the exchange coupling (001 eq. 7)");
   if (!(options.skip_below >= 0)) throw InputError("regions: skip_below must not be negative");
+  if (options.far_field_mass && options.coupling != Coupling::condensed)
+    throw InputError("regions: the far field's mass on the interface (Guyan) needs the condensed coupling");
+  if (options.single_precision && options.coupling != Coupling::condensed)
+    throw InputError("regions: a single-precision interface product needs the condensed coupling");
+  // Gravity acts on the primary's masses and, condensed, on the far field's (h): a far-field
+  // mass on the interface would carry its weight twice.
+  if (options.far_field_mass && !model.scene.gravity.isZero())
+    throw InputError("regions: the far field's mass on the interface (Guyan) is not combined with gravity");
   const bool exchange = options.coupling == Coupling::exchange;
   // The primary region's scene: the interface held at the published values (exchange; constraint
   // a holds interface node a), then the model's constraints on the primary nodes, which win where
@@ -77,9 +85,6 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
   std::vector<double> sub_masses;
   sub_masses.reserve(region_.nodes.size());
   for (int i : region_.nodes) sub_masses.push_back(masses[i]);
-  elements_ = std::make_unique<fem::ElementSet>(region_.submesh, sub_kinds, model.material);
-  solver_ = std::make_unique<dynamics::ExplicitSolver>(*elements_, std::move(sub_masses), scene_,
-                                                       hybrid::explicit_options(model, dt));
   // A primary region that covers the mesh leaves no secondary region: the whole model.
   if (region_.num_secondary_elements(mesh) > 0) {
     const auto t1 = Clock::now();
@@ -90,6 +95,15 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
       condensed_ = std::make_unique<CondensedSecondary>(linear, region_);
     stats_.secondary_setup_seconds = seconds_since(t1);
   }
+  if (condensed_ && options.single_precision) condensed_->use_single_precision();
+  if (condensed_ && options.far_field_mass) {
+    // Guyan: the far field's mass rides on the interface; the model's damping α M follows it.
+    const std::vector<double> extra = condensed_->interface_masses();
+    for (std::size_t a = 0; a < region_.interface.size(); ++a) sub_masses[region_.interface_local[a]] += extra[a];
+  }
+  elements_ = std::make_unique<fem::ElementSet>(region_.submesh, sub_kinds, model.material);
+  solver_ = std::make_unique<dynamics::ExplicitSolver>(*elements_, std::move(sub_masses), scene_,
+                                                       hybrid::explicit_options(model, dt));
   const std::size_t ni = 3 * region_.interface.size();
   interface_before_.assign(ni, 0.0);
   interface_last_.assign(ni, 0.0);
@@ -162,7 +176,9 @@ void RegionSolver::frame(const std::vector<dynamics::AppliedForce>& forces) {
       const double* u = solver_->displacement();
       for (std::size_t a = 0; a < region_.interface.size(); ++a)
         for (int c = 0; c < 3; ++c) interface_u_[3 * a + c] = u[3 * region_.interface_local[a] + c];
+      const auto t0 = Clock::now();
       condensed_->interface_force(interface_u_.data(), gravity_factor(), interface_f_.data());
+      stats_.interface_seconds += seconds_since(t0);
       applied_.resize(contact_forces);
       for (std::size_t a = 0; a < region_.interface.size(); ++a)
         applied_.push_back({region_.interface_local[a], Eigen::Vector3d(interface_f_.data() + 3 * a)});

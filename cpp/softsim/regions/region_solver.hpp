@@ -8,7 +8,8 @@
 //               displacement; the interface nodes are prescribed in the primary region to the
 //               values it publishes, held or interpolated between updates (001 Fig. 4);
 //   condensed:  its stiffness condensed onto the interface, a force on the primary region at
-//               every substep; its own nodes recovered every `secondary_every` frames (pictures).
+//               every substep; its own nodes recovered every `secondary_every` frames (pictures);
+//               optionally its mass too (Guyan), lumped onto the interface nodes.
 // Skipping (issue: "skip what the scene does not need"): a secondary update whose input moved
 // by less than `skip_below` since the last update is not done; the count is kept.
 // Rigid tools (the model's boundary.tools) act on the primary region's interior nodes only: the
@@ -57,6 +58,11 @@ struct RegionOptions {
   // Exchange: the secondary region implicit-dynamic with the step secondary_every × frame step
   // (its inertia and damping; 001 §4's implicit solver) instead of quasi-static.
   bool secondary_dynamic = false;
+  // Condensed: the far field's inertia in its static shape (Guyan), lumped onto the interface
+  // nodes of the primary region (secondary_region.hpp) instead of a massless far field.
+  bool far_field_mass = false;
+  // Condensed: the interface product in single precision (CondensedSecondary::use_single_precision).
+  bool single_precision = false;
   AdaptiveRadius adaptive;
 };
 
@@ -70,6 +76,7 @@ struct RegionStats {
   double secondary_setup_seconds = 0;  // of setup_seconds: the secondary's factorisation (and condensation)
   long local_cuts = 0;                 // cuts done by the primary engine's local update
   double local_cut_seconds = 0, local_cut_max_seconds = 0;
+  double interface_seconds = 0; // condensed: the interface product (−S u_I) of every substep, summed
 };
 
 class RegionSolver {

@@ -22,6 +22,7 @@ void add(RegionStats& to, const RegionStats& a, const RegionStats& minus) {
   to.secondary_updates += a.secondary_updates - minus.secondary_updates;
   to.secondary_skipped += a.secondary_skipped - minus.secondary_skipped;
   to.secondary_seconds += a.secondary_seconds - minus.secondary_seconds;
+  to.interface_seconds += a.interface_seconds - minus.interface_seconds;
   to.secondary_max_seconds = std::max(to.secondary_max_seconds, a.secondary_max_seconds);
   to.local_cuts += a.local_cuts - minus.local_cuts;
   to.local_cut_seconds += a.local_cut_seconds - minus.local_cut_seconds;

@@ -96,7 +96,8 @@ void ExchangeSecondary::solve(double* u, double gravity_factor) {
   for (std::size_t k = 0; k < secondary_.size(); ++k) u[secondary_[k]] = rhs_[k];
 }
 
-CondensedSecondary::CondensedSecondary(const LinearModel& model, const PrimaryRegion& region) : model_(&model) {
+CondensedSecondary::CondensedSecondary(const LinearModel& model, const PrimaryRegion& region)
+    : model_(&model), interface_nodes_(static_cast<int>(region.interface.size())) {
   const mesh::TetMesh& mesh = *model.mesh;
   const int n = mesh.num_nodes();
   // K^s: the secondary elements alone, on the whole node numbering.
@@ -145,8 +146,49 @@ CondensedSecondary::CondensedSecondary(const LinearModel& model, const PrimaryRe
 void CondensedSecondary::interface_force(const double* u_interface, double gravity_factor, double* force) {
   const int ni = static_cast<int>(interface_.size());
   for (int k = 0; k < ni; ++k) u_i_[k] = u_interface[interface_slot_[k]];
-  f_i_.noalias() = S_ * u_i_;
+  if (single_precision()) {
+    u32_ = u_i_.cast<float>();
+    f32_.noalias() = S32_ * u32_;
+    f_i_ = f32_.cast<double>();
+  } else {
+    f_i_.noalias() = S_ * u_i_;
+  }
   for (int k = 0; k < ni; ++k) force[interface_slot_[k]] = -f_i_[k] - gravity_factor * h_[k];
+}
+
+void CondensedSecondary::use_single_precision() {
+  if (single_precision()) return;
+  S32_ = S_.cast<float>();
+  S_ = Eigen::MatrixXd();
+  u32_.setZero(S32_.rows());
+  f32_.setZero(S32_.rows());
+}
+
+std::vector<double> CondensedSecondary::interface_masses() {
+  if (model_->masses.empty()) throw InputError("regions: the far field's inertia needs the lumped masses");
+  const int ni = static_cast<int>(interface_.size());
+  const int ns = static_cast<int>(secondary_.size());
+  std::vector<double> sum(interface_nodes_, 0.0), count(interface_nodes_, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    // Row sums of Ψᵀ M Ψ for a unit interface translation along c: w = K_SS⁻¹ K_SI e_c (= −Ψ e_c),
+    // then Ψᵀ M Ψ e_c = K_IS K_SS⁻¹ (M w).
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(ni);
+    for (int k = 0; k < ni; ++k)
+      if (interface_[k] % 3 == c) e[k] = 1.0;
+    Eigen::VectorXd w = K_si_ * e;
+    solver_.solve_in_place(w);
+    for (int k = 0; k < ns; ++k) w[k] *= model_->masses[secondary_[k] / 3];
+    solver_.solve_in_place(w);
+    const Eigen::VectorXd z = K_si_.transpose() * w;
+    for (int k = 0; k < ni; ++k)
+      if (interface_[k] % 3 == c) {
+        sum[interface_slot_[k] / 3] += z[k];
+        count[interface_slot_[k] / 3] += 1;
+      }
+  }
+  std::vector<double> m(interface_nodes_, 0.0);
+  for (int a = 0; a < interface_nodes_; ++a) m[a] = count[a] > 0 ? std::max(0.0, sum[a] / count[a]) : 0.0;
+  return m;
 }
 
 void CondensedSecondary::recover(double* u, double gravity_factor) {
