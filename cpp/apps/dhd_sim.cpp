@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
       "   \"boundary\": {\"fixed\", \"prescribed\", \"forces\", \"gravity\", \"probe\"},\n"
       "   \"solver\": {\"kind\": explicit|static, \"steps\", \"dt\" | \"safety_factor\", \"force_dt\", \"increments\", ...},\n"
       "   \"output\": {\"vtu\", \"vtu_interval\", \"vtu_format\", \"trajectories\", \"trajectory_interval\", \"velocity\"},\n"
-      "   \"cuts\": [{\"time\", \"from\", \"to\", \"mode\"}],\n"
+      "   \"cuts\": [{\"time\", \"from\", \"to\", \"mode\": \"remove\"|\"separate\"}],\n"
       "   \"threads\": " + std::to_string(hybrid::DhdConfig{}.threads) + ", \"bench\": {\"steps\", \"threads\", \"linear_fraction\", \"repeats\", \"response_set\"}}\n"
       "  --cut-bench: what the config's first cut costs the explicit engine and a precomputing method\n"
       "  Element kinds (partition \"element\", \"linear_element\", \"nonlinear_element\"; the artifact's element_kind\n"

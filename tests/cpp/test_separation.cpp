@@ -78,6 +78,23 @@ TEST(Separation, SegmentCrossing) {
   EXPECT_FALSE(cutting::segment_crosses(Eigen::Vector3d(0.8, 0.8, -1), Eigen::Vector3d(0.8, 0.8, 1), t));  // beside
   EXPECT_FALSE(cutting::segment_crosses(Eigen::Vector3d(0.2, 0.2, 0.5), Eigen::Vector3d(0.2, 0.2, 1), t));  // short
   EXPECT_FALSE(cutting::segment_crosses(Eigen::Vector3d(-1, 0.2, 0), Eigen::Vector3d(1, 0.2, 0), t));  // in plane
+  // An end on the plane counts as the normal's side: tested either way, a segment gets one answer.
+  const Eigen::Vector3d on(0.2, 0.2, 0), below(0.2, 0.2, -1), above(0.2, 0.2, 1);
+  EXPECT_TRUE(cutting::segment_crosses(on, below, t));
+  EXPECT_TRUE(cutting::segment_crosses(below, on, t));
+  EXPECT_FALSE(cutting::segment_crosses(on, above, t));
+  EXPECT_FALSE(cutting::segment_crosses(above, on, t));
+}
+
+// A blade through the centroids of a regular mesh's elements (x = 2.5 mm into a 1 cm cell of the
+// cuboid's split, where tetrahedron centroids lie) still opens the block.
+TEST(Separation, ABladeThroughCentroidsStillOpens) {
+  const auto m = cuboid(4, 4, 4, 0.04, 0.04, 0.04);
+  cutting::BladeSweep s = across(0.015);
+  for (auto* p : {&s.a0, &s.b0, &s.a1, &s.b1}) p->x() = 0.025;
+  const CutMesh c = separated(m, s);
+  EXPECT_GT(c.plan.faces.size(), 10u);
+  EXPECT_GT(c.plan.splits.size(), 5u);
 }
 
 // The cut faces separate the elements on either side of the blade within its sweep: each cut

@@ -32,3 +32,17 @@ def test_free_fall_check_is_zero_for_an_exact_damped_fall_and_sees_a_slower_one(
     assert exact["difference"] < 1e-3 * exact["drop"]
     slow = cutting.free_fall_check(ctx_for(-0.01 + 0.5 * (z + 0.01)))
     assert slow["difference"] > 0.4 * exact["drop"]
+
+
+def test_cut_mesh_appends_node_copies_and_repoints_moved_elements():
+    # Two tets sharing the face (1, 2, 3), separated along it: the second takes copies 4, 5, 6 of
+    # nodes 1, 2, 3; the boundary of what is left is then the 8 faces of two loose tets.
+    mesh = {"nodes": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1]], "tets": [[0, 1, 2, 3], [4, 1, 2, 3]]}
+    payload = {"node_copies": [[1, 5], [2, 6], [3, 7]], "moved_elements": [[1, 4, 5, 6, 7]]}
+    nodes, tets = cutting.cut_mesh(mesh, payload)
+    assert nodes.shape == (8, 3)
+    assert np.array_equal(nodes[5:], nodes[1:4])
+    assert tets.tolist() == [[0, 1, 2, 3], [4, 5, 6, 7]]
+    assert len(cutting.remaining_boundary(tets, [])) == 8
+    same_nodes, same_tets = cutting.cut_mesh(mesh, {})
+    assert same_nodes.shape == (5, 3) and same_tets.tolist() == mesh["tets"]

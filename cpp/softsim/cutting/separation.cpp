@@ -23,21 +23,21 @@ int find_root(std::vector<int>& parent, int a) {
 }  // namespace
 
 bool segment_crosses(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Triangle& tri) {
-  // Möller–Trumbore: p + t (q − p) = t0 + β (t1 − t0) + γ (t2 − t0).
-  const Eigen::Vector3d d = q - p, e1 = tri[1] - tri[0], e2 = tri[2] - tri[0];
-  const Eigen::Vector3d h = d.cross(e2);
-  const double det = e1.dot(h);
-  const double scale = d.norm() * e1.norm() * e2.norm();
-  if (!(std::abs(det) > 1e-14 * scale)) return false;  // parallel: no crossing point
-  const double inv = 1.0 / det;
-  const Eigen::Vector3d s = p - tri[0];
-  const double beta = inv * s.dot(h);
-  if (beta < 0 || beta > 1) return false;
-  const Eigen::Vector3d r = s.cross(e1);
-  const double gamma = inv * d.dot(r);
-  if (gamma < 0 || beta + gamma > 1) return false;
-  const double t = inv * e2.dot(r);
-  return t > 0 && t < 1;
+  // The ends on opposite sides of the triangle's plane, a point on the plane counting as the
+  // positive side (a blade through a centroid, as on a regular mesh, still gives each face one
+  // answer whichever way it is tested), and the crossing point inside the closed triangle.
+  const Eigen::Vector3d e1 = tri[1] - tri[0], e2 = tri[2] - tri[0];
+  const Eigen::Vector3d n = e1.cross(e2);
+  const double dp = n.dot(p - tri[0]), dq = n.dot(q - tri[0]);
+  if ((dp >= 0) == (dq >= 0)) return false;
+  const Eigen::Vector3d x = p + dp / (dp - dq) * (q - p);
+  // Barycentric coordinates of x in the triangle.
+  const Eigen::Vector3d r = x - tri[0];
+  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), r1 = r.dot(e1), r2 = r.dot(e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0)) return false;
+  const double beta = (d22 * r1 - d12 * r2) / det, gamma = (d11 * r2 - d12 * r1) / det;
+  return beta >= 0 && gamma >= 0 && beta + gamma <= 1;
 }
 
 SeparationPlan plan_separation(const mesh::TetMesh& mesh, const double* u, const BladeSweep& sweep,

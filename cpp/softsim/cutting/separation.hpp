@@ -60,7 +60,9 @@ struct BoundaryChange {
 // appended to the boundary triangles, each facing out of its element. The topology follows.
 BoundaryChange apply_separation(mesh::TetMesh& mesh, FaceTopology& topology, const SeparationPlan& plan);
 
-// Whether the segment p–q crosses the triangle (closed triangle, open segment).
+// Whether the segment p–q crosses the triangle: its ends on opposite sides of the triangle's
+// plane (an end on the plane counts as the side the normal points to) and the crossing point
+// inside the closed triangle.
 bool segment_crosses(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Triangle& tri);
 
 }  // namespace softsim::cutting

@@ -232,6 +232,16 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
       for (const auto& ev : run.cuts)
         for (const auto& [node, copy] : ev.copies) copies.push_back({node, copy});
       p["node_copies"] = copies;
+      // The elements whose corners moved to copies, with their corners now ([e, a, b, c, d]), so
+      // that the cut mesh can be drawn from the mesh given.
+      nlohmann::json moved = nlohmann::json::array();
+      if (run.cut_mesh)
+        for (int e = 0; e < mesh.num_tets(); ++e)
+          if (run.cut_mesh->tets[e] != mesh.tets[e]) {
+            const auto& t = run.cut_mesh->tets[e];
+            moved.push_back({e, t[0], t[1], t[2], t[3]});
+          }
+      p["moved_elements"] = moved;
     }
   }
   if (!c.output.trajectory_nodes.empty()) {
