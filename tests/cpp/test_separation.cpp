@@ -11,6 +11,7 @@
 #include "softsim/cutting/separation.hpp"
 #include "softsim/dynamics/explicit_solver.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
+#include "softsim/dynamics/spectral_step.hpp"
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/fem/element_set.hpp"
 #include "softsim/hybrid/dhd_config.hpp"
@@ -337,6 +338,52 @@ TEST(Separation, RunAfterACutUnderLoadStaysStableAndRemovesNoEnergy) {
   EXPECT_GT(last.dissipated, 0.0);
   for (double x : r.displacement) ASSERT_TRUE(std::isfinite(x));
   EXPECT_EQ(r.displacement.size(), 3u * scene.num_nodes());
+}
+
+// With the step from power iteration, a cut (either kind) measures 2/ω_max again on the cut
+// system: the same value as a power iteration on the cut mesh from scratch, and the run's step is
+// lowered to safety × that value when it exceeds it; a requested step above it is a numerical
+// failure naming the cut.
+TEST(Separation, APowerIterationStepIsMeasuredAgainAfterACut) {
+  const auto m = cuboid(4, 4, 4, 0.04, 0.04, 0.04);
+  const auto mesh = std::make_shared<const mesh::TetMesh>(m);
+  for (const std::string mode : {"remove", "separate"}) {
+    nlohmann::json j = nlohmann::json::parse(R"({
+      "mesh": "m",
+      "material": {"model": "neo_hookean_decoupled", "E": 5000, "nu": 0.35, "density": 1000},
+      "boundary": {"fixed": ["bottom"]},
+      "solver": {"kind": "explicit", "steps": 400, "critical_step": "power_iteration", "safety_factor": 1.0},
+      "cuts": [{"time": 0.01, "from": [[0.021, -0.01, 0.05], [0.021, 0.05, 0.05]], "to": [[0.021, -0.01, 0.015], [0.021, 0.05, 0.015]]}]
+    })");
+    j["cuts"][0]["mode"] = mode;
+    const std::vector<ElementKind> kinds(m.num_tets(), ElementKind::tled);
+    hybrid::DhdScene scene(mesh, hybrid::read_dhd_config(io::JsonReader(j, "c.json"), m), kinds);
+    const double before = scene.spectral_step()->dt;
+    scene.run();
+    ASSERT_EQ(scene.cut_events().size(), 1u) << mode;
+    const auto& ev = scene.cut_events()[0];
+    mesh::TetMesh live = scene.mesh();
+    live.tets.clear();
+    for (int e = 0; e < scene.mesh().num_tets(); ++e)
+      if (!scene.removed(e)) live.tets.push_back(scene.mesh().tets[e]);
+    const std::vector<ElementKind> live_kinds(live.tets.size(), ElementKind::tled);
+    const double fresh = dynamics::power_iteration_step(live, live_kinds, scene.config().material, scene.config().scene).dt;
+    EXPECT_NEAR(ev.stable_step, fresh, 1e-12 * fresh) << mode;
+    EXPECT_LT(ev.stable_step, before) << mode;  // here the cut raised ω_max a little
+    EXPECT_LE(scene.dt(), ev.stable_step * (1 + 1e-12)) << mode;  // the step followed at once
+    EXPECT_GT(ev.step_check_seconds, 0.0);
+    // A requested step between the two limits runs before the cut and fails at it.
+    j["solver"].erase("critical_step");
+    j["solver"]["critical_step"] = "power_iteration";
+    j["solver"]["dt"] = 0.5 * (before + ev.stable_step);
+    hybrid::DhdScene fixed(mesh, hybrid::read_dhd_config(io::JsonReader(j, "c.json"), m), kinds);
+    try {
+      fixed.run();
+      ADD_FAILURE() << mode << ": a requested step above the cut system's limit ran on";
+    } catch (const NumericalError& e) {
+      EXPECT_NE(std::string(e.what()).find("cut at t"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Separation, ASceneNotSetUpForItRefusesASeparatingCut) {

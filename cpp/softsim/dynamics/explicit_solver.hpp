@@ -194,6 +194,12 @@ class ExplicitSolver {
   double step_size(int step) const;
   // The step sizes used since the last reset.
   const std::vector<StepSegment>& step_history() const { return segments_; }
+  // Between steps: the step re-estimate now (ExplicitOptions::critical_step), as every
+  // step_check_interval steps would do; nothing without adapt_step. After a change of the
+  // critical step's function (a cut measured again).
+  void recheck_step() {
+    if (opt_.adapt_step && started_) check_step();
+  }
   int num_nodes() const { return n_; }
   // The lumped nodal masses in use (after cuts: what they left).
   const std::vector<double>& masses() const { return mass_; }
@@ -227,9 +233,10 @@ class ExplicitSolver {
   // Between steps: a cut by element removal. The element set drops the elements by a local
   // update (fem::ElementSet::remove_elements), their lumped mass ρ⁰V/4 leaves their corners and
   // only those nodes' central-difference coefficients are recomputed; a node left without any
-  // element holds its place. Nothing global is rebuilt. The stable step cannot shrink: each
-  // remaining element keeps its own mass share and stiffness, and the lumped system's highest
-  // frequency is bounded by the elements' (the element eigenvalue bound behind 000 eq. 34).
+  // element holds its place. Nothing global is rebuilt. The element eigenvalue bound behind
+  // 000 eq. 34 cannot shrink (each remaining element keeps its own mass share and stiffness), so
+  // the altitude estimate stays valid; the lumped system's own 2/ω_max may move toward that
+  // bound (DhdScene measures it again when the step came from power iteration).
   // Permanent: reset() returns to t = 0 with the cut mesh. `mesh`: the element set's mesh.
   CutReport remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements);
   double removed_energy() const { return removed_energy_; }
@@ -240,8 +247,9 @@ class ExplicitSolver {
   // ρ⁰V/4 of the moved elements leave the node for the copy: mass, momentum and kinetic energy
   // are unchanged and nothing is removed. Only the two nodes' coefficients are recomputed; the
   // copy is updated after the mid-step barrier, and joins every rigid tool its node is listed
-  // for. A node a constraint acts on cannot split (InputError). The stable step cannot shrink:
-  // each element keeps its own mass share at every corner (as for remove_elements).
+  // for. A node a constraint acts on cannot split (InputError). The element bound on the stable
+  // step does not change: each element keeps its own mass share at every corner (as for
+  // remove_elements).
   // `mesh`: the element set's mesh after the split.
   double split_nodes(const mesh::TetMesh& mesh, const std::vector<fem::ElementSet::NodeCopy>& copies);
 

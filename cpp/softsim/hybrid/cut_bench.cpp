@@ -8,6 +8,7 @@
 
 #include "softsim/cutting/blade.hpp"
 #include "softsim/dynamics/scene.hpp"
+#include "softsim/dynamics/spectral_step.hpp"
 #include "softsim/fem/assembly.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
 #include "softsim/hybrid/partition.hpp"
@@ -90,6 +91,10 @@ nlohmann::json cut_bench(const mesh::TetMesh& mesh, const DhdConfig& c, int repe
   const mesh::TetMesh cut_mesh = mode == CutMode::separate ? *separated : without(mesh, removed, kinds, kinds_left);
   const auto cut_shared = std::shared_ptr<const mesh::TetMesh>(&cut_mesh, [](const mesh::TetMesh*) {});
   const double full_setup = best_of(repeats, [&] { DhdScene s(cut_shared, cutting_config, kinds_left); });
+  // The stable step 2/ω_max of the lumped system (power iteration) before and after the cut: a
+  // cut may not shorten it (each element keeps its own mass share; issue 19's stability check).
+  const double dt_before = dynamics::power_iteration_step(mesh, kinds, c.material, c.scene).dt;
+  const double dt_after = dynamics::power_iteration_step(cut_mesh, kinds_left, c.material, c.scene).dt;
 
   // The precomputing methods: the linear stiffness of the cut mesh, constrained dofs out.
   const int n = cut_mesh.num_nodes();
@@ -141,7 +146,9 @@ nlohmann::json cut_bench(const mesh::TetMesh& mesh, const DhdConfig& c, int repe
                         {"cut_prepare_seconds", prepare},
                         {"cut_search_seconds", search},
                         {"cut_update_seconds", update},
-                        {"full_setup_on_cut_mesh_seconds", full_setup}}},
+                        {"full_setup_on_cut_mesh_seconds", full_setup},
+                        {"stable_step_before", dt_before},
+                        {"stable_step_after", dt_after}}},
           {"precomputed", {{"free_dofs", free},
                            {"cholesky_seconds", factorise},
                            {"response_dofs", response_dofs.size()},

@@ -223,7 +223,9 @@ nlohmann::json result_payload(const mesh::TetMesh& mesh, const DhdConfig& c, con
                       {"faces_opened", ev.faces},
                       {"node_copies", ev.copies.size()},
                       {"held_nodes_kept", ev.held_nodes_kept},
-                      {"separation_seconds", ev.separation_seconds}});
+                      {"separation_seconds", ev.separation_seconds},
+                      {"stable_step", ev.stable_step},
+                      {"step_check_seconds", ev.step_check_seconds}});
     p["cuts"] = cuts;
     p["removed_elements"] = run.removed_elements;
     if (c.separates) {

@@ -1,6 +1,7 @@
 #include "softsim/hybrid/dhd_scene.hpp"
 
 #include <chrono>
+#include <sstream>
 
 #include "softsim/cutting/pieces.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
@@ -65,8 +66,8 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     // With power iteration the deformed estimate keeps its ratio to the rest state: eq. 34 on
     // the current geometry says by how much deformation shortens the limit, 2/ω_max at rest
     // where it starts (no eigenvalue solve inside the step loop).
-    const double scale = spectral_ ? spectral_->dt / critical_.dt : 1.0;
-    options.critical_step = [d = deformed_step_.get(), scale](const double* u) { return scale * d->at(u).dt; };
+    spectral_scale_ = spectral_ ? spectral_->dt / critical_.dt : 1.0;
+    options.critical_step = [this](const double* u) { return spectral_scale_ * deformed_step_->at(u).dt; };
     // The automatic step is re-estimated as the mesh deforms; a requested one is kept.
     options.adapt_step = !config_.explicit_solver.dt && config_.explicit_solver.dt_check_interval > 0;
     options.step_safety = config_.explicit_solver.safety_factor;
@@ -153,8 +154,40 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode,
   ev.pieces_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
   ev.pieces = pieces.count;
   ev.loose_pieces = static_cast<int>(pieces.loose.size());
+  if (spectral_) recheck_spectral_step(ev);
   cut_events_.push_back(ev);
   return ev;
+}
+
+// A cut leaves every element as it was, so 000 eq. 34's element bound (the altitude estimate)
+// holds as before; the lumped system's own 2/ω_max, however, may move toward that bound (a node
+// that loses elements loses mass faster than stiffness). A step taken from power iteration is
+// therefore measured again on the cut system (the elements left, the mesh as cut), and the run's
+// step follows: an automatic step is lowered at once if it now exceeds the new limit; a requested
+// one that does is a numerical failure naming the cut.
+void DhdScene::recheck_spectral_step(CutEvent& ev) {
+  const auto t0 = std::chrono::steady_clock::now();
+  mesh::TetMesh live;
+  live.nodes = mesh_->nodes;
+  std::vector<fem::ElementKind> kinds;
+  for (int e = 0; e < mesh_->num_tets(); ++e)
+    if (!elements_->removed(e)) {
+      live.tets.push_back(mesh_->tets[e]);
+      kinds.push_back(kinds_[e]);
+    }
+  spectral_ = dynamics::power_iteration_step(live, kinds, config_.material, config_.scene);
+  spectral_scale_ = spectral_->dt / critical_.dt;
+  ev.stable_step = spectral_->dt;
+  ev.step_check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  dynamics::ExplicitSolver& s = solver();
+  if (s.options().adapt_step) {
+    s.recheck_step();
+  } else if (s.dt() > spectral_->dt) {
+    std::ostringstream msg;
+    msg << "cut at t = " << ev.time << " s: the stable step of the cut system is " << spectral_->dt
+        << " s (2/omega_max, power iteration), below the requested step " << s.dt() << " s";
+    throw NumericalError(msg.str());
+  }
 }
 
 double DhdScene::prepare_cuts() {

@@ -89,6 +89,10 @@ class DhdScene {
     int held_nodes_kept = 0;
     double separation_seconds = 0;
     cutting::BoundaryChange boundary;  // what it did to the mesh's boundary triangles
+    // With the step from power iteration: 2/ω_max of the cut system, measured again (s), and
+    // the time that took (recheck_spectral_step); 0 otherwise.
+    double stable_step = 0;
+    double step_check_seconds = 0;
     int pieces = 0;              // connected pieces left after the cut
     int loose_pieces = 0;        // of them, held by no constraint
     double search_seconds = 0;   // finding the crossed elements
@@ -128,6 +132,8 @@ class DhdScene {
   std::vector<int> cut_candidates_;
   std::unique_ptr<cutting::FaceTopology> topology_;  // built at the first separating cut
   CutEvent separate(const cutting::BladeSweep& sweep, CutEvent ev, const std::vector<int>& crossed, const double* u);
+  void recheck_spectral_step(CutEvent& ev);
+  double spectral_scale_ = 1.0;  // 2/ω_max over the altitude estimate, at rest (the deformed estimate's factor)
   std::unique_ptr<dynamics::ExplicitSolver> solver_;
   double setup_seconds_ = 0;
 };
