@@ -116,9 +116,6 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
     }
     blade->reject_unknown();
   }
-  if (c.model.separates && cfg.has("regions"))
-    cfg.fail_member("regions", "no regions with a separating cut (a node copy changes the regions' meshes; use "
-                               "\"mode\": \"remove\")");
   if (const auto r = cfg.optional("regions")) {
     // The regions drive one rigid tool, the probe's (contact "tool"); a second tool, or one the
     // probe does not drive, would move on its own ramp where no region was placed for it.

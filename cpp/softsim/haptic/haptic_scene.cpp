@@ -61,8 +61,6 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
   }
   model_ = std::make_unique<hybrid::DhdScene>(mesh, std::move(c));
   surface_.emplace(model_->mesh());
-  if (options_.use_regions && model_->config().separates)
-    throw InputError("haptic: regions and a separating cut cannot be combined (a node copy changes the regions' meshes)");
   applied_.resize(3);
   if (options_.use_regions) {
     // The regions drive one rigid tool, the probe's: another would move on its own ramp in a
@@ -72,7 +70,8 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
       throw InputError("haptic: regions take one rigid tool, driven by the probe (contact \"tool\")");
     if (options_.contact == ContactMode::tool && !(tool_margin() >= 0 && std::isfinite(tool_margin())))
       throw InputError("haptic: the regions' tool margin must be a finite distance >= 0");
-    regions_ = std::make_unique<regions::RegionTracker>(*mesh_, model_->config(), model_->kinds(), model_->dt(),
+    // On the model's mesh: a separating cut adds node copies to it, which the regions then take.
+    regions_ = std::make_unique<regions::RegionTracker>(model_->mesh(), model_->config(), model_->kinds(), model_->dt(),
                                                         substeps_, options_.regions);
   }
   reset();
@@ -165,7 +164,9 @@ void HapticScene::follow_cuts() {
   while (cuts_seen_ < events.size()) {
     const auto& ev = events[cuts_seen_++];
     if (ev.mode == hybrid::CutMode::separate) {
-      surface_->follow_separation(ev.boundary);  // the regions refuse separating cuts
+      surface_->follow_separation(ev.boundary);
+      // Node copies change every region's mesh: the active one is built again on the cut mesh.
+      if (regions_) regions_->topology_changed({{}, ev.moved_elements, ev.copies});
       continue;
     }
     const auto& gone = ev.report.elements;

@@ -1,5 +1,6 @@
 #include "softsim/hybrid/dhd_scene.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 
@@ -216,7 +217,10 @@ DhdScene::CutEvent DhdScene::separate(const cutting::BladeSweep& sweep, CutEvent
   for (const auto& split : plan.splits) {
     copies.push_back({split.node, split.copy, split.elements});
     ev.copies.push_back({split.node, split.copy});
+    ev.moved_elements.insert(ev.moved_elements.end(), split.elements.begin(), split.elements.end());
   }
+  std::sort(ev.moved_elements.begin(), ev.moved_elements.end());
+  ev.moved_elements.erase(std::unique(ev.moved_elements.begin(), ev.moved_elements.end()), ev.moved_elements.end());
   solver().split_nodes(*mesh_, copies);
   held_.resize(mesh_->num_nodes(), 0);
   ev.separation_seconds = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -86,6 +86,7 @@ class DhdScene {
     // constraint holds (not split), and the time of the mesh and engine updates.
     int faces = 0;
     std::vector<std::array<int, 2>> copies;
+    std::vector<int> moved_elements;  // the elements re-pointed to copies, ascending
     int held_nodes_kept = 0;
     double separation_seconds = 0;
     cutting::BoundaryChange boundary;  // what it did to the mesh's boundary triangles

@@ -233,7 +233,8 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
   ++topology_.changes;
   for (int e : change.removed) removed_[e] = 1;
   linear_stale_ = true;  // regions built from now on see the cut mesh
-  const bool removal_only = change.changed.empty();
+  const bool removal_only = change.changed.empty() && change.copies.empty();
+  const std::size_t n3_before = rest_.size();  // a separation adds nodes: the state grows below
   for (auto it = built_.begin(); it != built_.end();) {
     RegionSolver* r = it->second.solver.get();
     if (removal_only && !r->secondary_affected(change.removed)) {
@@ -256,9 +257,18 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     }
     // The active region's secondary factorisation (and condensed interface) no longer holds:
     // the region is built anew on the cut mesh and resumes from the state it published.
-    std::vector<double> u(active_->displacement(), active_->displacement() + rest_.size());
+    std::vector<double> u(active_->displacement(), active_->displacement() + n3_before);
     std::vector<double> u_before = u;
     active_->primary_previous(u_before.data());
+    // Each node copy starts from its node's state (a separation keeps every velocity).
+    rest_.resize(3 * static_cast<std::size_t>(mesh_->num_nodes()), 0.0);
+    u.resize(rest_.size(), 0.0);
+    u_before.resize(rest_.size(), 0.0);
+    for (const auto& [node, copy] : change.copies)
+      for (int k = 0; k < 3; ++k) {
+        u[3 * copy + k] = u[3 * node + k];
+        u_before[3 * copy + k] = u_before[3 * node + k];
+      }
     const auto t0 = Clock::now();
     update_linear();
     const double linear_seconds = seconds_since(t0);
@@ -280,6 +290,7 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     topology_.linear_seconds += linear_seconds;
     ++it;
   }
+  rest_.resize(3 * static_cast<std::size_t>(mesh_->num_nodes()), 0.0);  // with no region active too
 }
 
 void RegionTracker::frame(const std::vector<dynamics::AppliedForce>& forces) {

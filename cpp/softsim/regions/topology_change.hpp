@@ -6,6 +6,7 @@
 // methods); anything that reaches the secondary region invalidates its factorisation and its
 // condensed interface, which are built anew (the cost 000 attributes to precomputing methods).
 // Changed elements have no local update in the engine: the regions holding them are rebuilt.
+#include <array>
 #include <vector>
 
 namespace softsim::regions {
@@ -13,7 +14,10 @@ namespace softsim::regions {
 struct TopologyChange {
   std::vector<int> removed;  // elements gone (original indices, ascending)
   std::vector<int> changed;  // elements still there whose corners changed
-  bool empty() const { return removed.empty() && changed.empty(); }
+  // Node copies a separation made, (node, copy), the copies numbered after every node in order:
+  // the regions' mesh (the model's, which the cut changed) has them already.
+  std::vector<std::array<int, 2>> copies;
+  bool empty() const { return removed.empty() && changed.empty() && copies.empty(); }
 };
 
 // What the regions' reactions to topology changes cost, summed over the run.
