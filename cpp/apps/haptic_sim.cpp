@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
       "   \"regions\": {\"radius\": m, \"coupling\": \"condensed\"|\"exchange\", \"secondary_every\": 10, \"interpolate\": true,\n"
       "               \"secondary\": \"static\"|\"implicit\"|\"guyan\", \"precision\": \"double\"|\"single\", \"skip_below\": 0 m,\n"
       "               \"tool_margin\": m (contact tool), \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
-      "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s,\n"
+      "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s, \"announce\": false,\n"
       "                 \"visual\": {\"path\": FILE, \"every\": 33}}}   (serve)\n"
       "  Full reference: cpp/apps/haptic_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
@@ -48,6 +48,11 @@ int main(int argc, char** argv) {
     haptic::HapticRecord record;
     if (ctx.mode == "serve") {
       const auto& rt = config.realtime;
+      // Everything is set up before the device's clock starts: the model above and, with
+      // regions, the region at the input's start (its factorisation can take seconds on a fine
+      // mesh), so the first answer is a frame like the others. "listening" (udp) or, asked for
+      // (realtime.announce), "ready" (stdin) on stderr says so.
+      if (config.options.use_regions) scene.prepare(config.input.at(0));
       std::unique_ptr<haptic::VisualStream> visual;
       if (!rt.visual.path.empty()) visual = std::make_unique<haptic::VisualStream>(*mesh, rt.visual);
       if (rt.source == haptic::RealtimeConfig::Source::udp) {
@@ -55,6 +60,7 @@ int main(int argc, char** argv) {
             scene, rt.port, rt.max_frames, rt.idle_timeout,
             [](int port) { std::cerr << "haptic_sim: listening on udp 127.0.0.1:" << port << std::endl; }, visual.get());
       } else {
+        if (rt.announce) std::cerr << "haptic_sim: ready" << std::endl;
         record = haptic::serve_lines(scene, std::cin, std::cout, rt.max_frames, visual.get());
       }
     } else {

@@ -52,7 +52,7 @@ def run(ctx):
     surface = np.unique(np.array(mesh["boundary"]).ravel())
     origin = X[surface[np.argmin(np.linalg.norm(X[surface] - np.array(press["start"]), axis=1))]]
     frames = int(round(seconds * rate))
-    scene = dict(cfg["scene"], realtime={"source": "stdin", "max_frames": 0})
+    scene = dict(cfg["scene"], realtime={"source": "stdin", "max_frames": 0, "announce": True})
     round_trip = np.zeros(frames)
     with tempfile.TemporaryDirectory(prefix="haptic_realtime_") as tmp:
         cfg_path, out_path = Path(tmp) / "scene.json", Path(tmp) / "served.json"
@@ -60,6 +60,12 @@ def run(ctx):
         proc = subprocess.Popen([str(tool_path("haptic_sim")), "serve", "--config", str(cfg_path), "--out", str(out_path)],
                                 cwd=ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                 text=True, bufsize=1, env=dict(os.environ, OMP_NUM_THREADS="1"))
+        # The device's clock starts once the scene says it is set up (model, and the region at
+        # the press's start), as a bridge would wait for it.
+        ready = proc.stderr.readline()
+        if "haptic_sim: ready" not in ready:
+            proc.kill()
+            raise RuntimeError(f"haptic_sim serve did not get ready: {ready.strip() or proc.stderr.read().strip()}")
         period = 1.0 / rate
         start = time.perf_counter()
         for k in range(frames):

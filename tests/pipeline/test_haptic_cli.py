@@ -190,9 +190,29 @@ def test_served_regions_answer_with_the_offline_regions_forces(scene):
     assert served.returncode == 0, served.stderr
     forces = payload(tmp / "run.json")["force"]
     answers = [[float(x) for x in a.split()[1:]] for a in served.stdout.splitlines()]
-    # serve builds the region at the first contact, run before the first frame: the same region.
+    # serve, like run, builds the region at the input's start before the first frame: the same region.
     import numpy as np
     np.testing.assert_allclose(answers, forces, rtol=1e-9, atol=1e-12)
     regions = payload(tmp / "serve.json")["regions"]
     assert regions["coupling"] == "condensed" and regions["primary"]["interface_nodes"] > 0
     assert payload(tmp / "serve.json")["solver"] == "regions"
+
+
+def test_serve_announces_ready_after_the_region_is_built_and_before_reading(scene):
+    """With realtime.announce the bridge learns when the scene is set up (the region at the
+    input's start built): the announcement comes before any line is sent, every line is then
+    answered, and the run keeps the one region built before it."""
+    tmp, lines, config = scene
+    config(regions={"radius": 0.015, "coupling": "condensed", "secondary_every": 5},
+           realtime={"source": "stdin", "announce": True})
+    server = subprocess.Popen([str(tool("haptic_sim")), "serve", "--config", tmp / "h.json", "--out", tmp / "serve.json"],
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert server.stderr.readline().strip() == "haptic_sim: ready"
+        out, err = server.communicate("\n".join(lines) + "\n", timeout=60)
+    finally:
+        server.kill()
+    assert server.returncode == 0, err
+    assert len(out.splitlines()) == FRAMES
+    regions = payload(tmp / "serve.json")["regions"]
+    assert regions["builds"] == 1

@@ -69,6 +69,7 @@ void read_realtime(const io::JsonReader& r, RealtimeConfig& rt) {
   rt.max_frames = r.get_int("max_frames", 0);
   r.require(rt.max_frames >= 0, "max_frames", "a frame count >= 0 (0: until the input ends)");
   rt.idle_timeout = r.get_positive("idle_timeout", rt.idle_timeout);
+  rt.announce = r.get_bool("announce", rt.announce);
   if (const auto v = r.optional("visual")) {
     rt.visual.path = v->get_string("path");
     v->require(!rt.visual.path.empty(), "path", "a file or named pipe for the surface stream");

@@ -19,6 +19,7 @@ struct RealtimeConfig {
   int port = 0;          // udp: the loopback port to listen on (0: any free port, printed)
   long max_frames = 0;   // 0: until the input ends
   double idle_timeout = 5.0;  // udp: s without a datagram before the client counts as gone
+  bool announce = false;      // stdin: "haptic_sim: ready" on stderr once set up (udp announces its port)
   VisualConfig visual;        // the deformed surface at a lower rate (visual_stream.hpp)
 };
 
