@@ -1,0 +1,185 @@
+// The far field's fixed-interface modes (Craig–Bampton) on the condensed regions: with no modes
+// the Guyan far field is left; every mode carries the whole Guyan mass and makes the regions the
+// whole linear model under a dynamic input, to round-off; a few lowest modes already remove most
+// of the Guyan far field's dynamic error; a region covering the mesh is still the whole model bit
+// for bit; the mode count is checked.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "softsim/dynamics/lumped_mass.hpp"
+#include "softsim/haptic/haptic_config.hpp"
+#include "softsim/haptic/haptic_run.hpp"
+#include "softsim/haptic/haptic_scene.hpp"
+#include "softsim/io/errors.hpp"
+#include "softsim/regions/primary_region.hpp"
+#include "softsim/regions/secondary_region.hpp"
+
+#include "support/haptic_block.hpp"
+#include "support/scenes.hpp"
+
+using namespace softsim;
+
+namespace {
+
+using Block = test_scenes::HapticBlock;
+using test_scenes::press_down;
+
+const Eigen::Vector3d kTop(0.05, 0.05, 0.05);
+
+haptic::HapticOptions modal(double radius, int modes) {
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = 100;
+  opt.use_regions = true;
+  opt.regions.radius = radius;
+  opt.regions.coupling = regions::Coupling::condensed;
+  opt.regions.secondary_every = 10;
+  opt.regions.far_field_mass = true;
+  opt.regions.far_field_modes = modes;
+  return opt;
+}
+
+haptic::HapticOptions whole_model() {
+  haptic::HapticOptions opt;
+  opt.probe_stiffness = 100;
+  return opt;
+}
+
+// 001 Fig. 6's chirp, 3 mm, 0 → 40 Hz over 0.6 s: fast enough that the far field's own
+// dynamics show.
+haptic::ProbePath chirp() {
+  haptic::ProbePath path = press_down(kTop, 0.003, 0.1);
+  path.kind = haptic::ProbePath::Kind::chirp;
+  path.signal.kind = multirate::ProbeSignal::Kind::kChirp;
+  path.signal.amplitude = 0.003;
+  path.signal.start_frequency = 0;
+  path.signal.end_frequency = std::getenv("XF") ? std::atof(std::getenv("XF")) : 40;
+  path.signal.sweep_time = 0.6;
+  return path;
+}
+
+// Largest force difference over the run, relative to the reference's peak force.
+double relative_error(const haptic::HapticRecord& a, const haptic::HapticRecord& ref) {
+  double largest = 0, peak = 0;
+  for (std::size_t k = 0; k < ref.force.size(); ++k) {
+    largest = std::max(largest, (a.force[k] - ref.force[k]).norm());
+    peak = std::max(peak, ref.force[k].norm());
+  }
+  return largest / peak;
+}
+
+regions::PrimaryRegion region_at_top(const mesh::TetMesh& m, double radius) {
+  int centre = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if ((m.nodes[i] - kTop).norm() < 1e-12) centre = i;
+  return regions::select_primary_region(m, centre, radius);
+}
+
+}  // namespace
+
+// The residual mass Ψᵀ M Ψ − LᵀL left on the interface: Guyan's with no modes, less with each
+// mode, none with every mode (the modes then carry the far field's whole inertia).
+TEST(ModalFarField, ModesTakeOverTheGuyanMassUntilNoneIsLeft) {
+  Block b;
+  const auto& m = *b.mesh;
+  const regions::PrimaryRegion r = region_at_top(m, 0.03);
+  const fem::Material material = b.config(10).material;
+  const std::vector<double> masses = dynamics::lumped_mass(m, material.elastic.density);
+  const regions::LinearModel linear(m, material, std::vector<char>(3 * m.num_nodes(), 0),
+                                    Eigen::VectorXd::Zero(3 * m.num_nodes()), masses);
+  auto laid = [&](int modes) {
+    regions::CondensedSecondary far(linear, r);
+    if (modes > 0) far.use_modes(modes, 1e-4, 10);
+    double sum = 0;
+    for (double x : far.interface_masses()) sum += x;
+    return sum;
+  };
+  regions::CondensedSecondary probe(linear, r);
+  const int all = probe.secondary_dofs();
+  const double guyan = laid(0), few = laid(6), every = laid(all);
+  ASSERT_GT(guyan, 0.1);
+  EXPECT_LT(few, guyan);
+  EXPECT_LT(every, 1e-9 * guyan);
+  // The modes found are the far field's, ascending and positive (the interface holds it).
+  regions::CondensedSecondary far(linear, r);
+  far.use_modes(6, 1e-4, 10);
+  ASSERT_EQ(far.modes(), 6);
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_GT(far.mode_omega2()[j], 0.0);
+    if (j > 0) EXPECT_GE(far.mode_omega2()[j], far.mode_omega2()[j - 1]);
+  }
+}
+
+// Every mode kept: the far field in modal coordinates is the far field, and the same central
+// difference in those coordinates is the same step; the regions follow the whole linear model
+// under the chirp to round-off. With no modes (Guyan) and with a few the error is what the
+// truncation leaves, falling with the modes kept.
+TEST(ModalFarField, EveryModeIsTheWholeLinearModelAndFewModesBeatGuyan) {
+  Block b;
+  const haptic::ProbePath path = chirp();
+  const long frames = 600;
+  haptic::HapticScene whole(b.mesh, b.config(15, "linear"), whole_model());
+  const auto rw = haptic::run_haptic(whole, path, frames);
+  const regions::LinearModel linear(*b.mesh, b.config(15, "linear").material,
+                                    std::vector<char>(3 * b.mesh->num_nodes(), 0), Eigen::VectorXd::Zero(3 * b.mesh->num_nodes()));
+  const regions::CondensedSecondary count(linear, region_at_top(*b.mesh, 0.03));  // at least every mode
+  double err[3];
+  const int modes[3] = {0, 8, count.secondary_dofs()};
+  for (int k = 0; k < 3; ++k) {
+    haptic::HapticScene regions(b.mesh, b.config(15, "linear"), modal(0.03, modes[k]));
+    const auto rr = haptic::run_haptic(regions, path, frames);
+    ASSERT_TRUE(regions.events().empty());
+    ASSERT_FALSE(regions.regions()->active()->region().interface.empty());
+    err[k] = relative_error(rr, rw);
+  }
+  for (int mm : {1, 2, 4, 8, 16, 32, 64, 128, 256, 512}) {
+    haptic::HapticScene regions(b.mesh, b.config(15, "linear"), modal(0.03, mm));
+    const auto rr = haptic::run_haptic(regions, path, frames);
+    std::printf("modes %d err %g events %zu\n", mm, relative_error(rr, rw), regions.events().size());
+  }
+  EXPECT_GT(err[0], 1e-3) << "the chirp should stir the far field's own dynamics";
+  EXPECT_LT(err[1], 0.5 * err[0]) << err[1] << " vs Guyan " << err[0];
+  EXPECT_LT(err[2], 1e-9) << err[2];
+}
+
+TEST(ModalFarField, APrimaryRegionCoveringTheMeshIsStillTheWholeModelBitForBit) {
+  Block b;
+  const haptic::ProbePath path = press_down(kTop, 0.008, 0.2);
+  haptic::HapticScene whole(b.mesh, b.config(15), whole_model());
+  haptic::HapticScene all(b.mesh, b.config(15), modal(1.0, 12));  // no far field: no modes
+  const auto rw = haptic::run_haptic(whole, path, 300);
+  const auto ra = haptic::run_haptic(all, path, 300);
+  for (std::size_t k = 0; k < rw.force.size(); ++k)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(rw.force[k][c], ra.force[k][c]) << "frame " << k;
+}
+
+TEST(ModalFarField, TheModeCountIsChecked) {
+  Block b;
+  auto bad = modal(0.03, 4);
+  bad.regions.far_field_mass = false;  // modes without the Guyan far field they complete
+  haptic::HapticScene without_mass(b.mesh, b.config(15, "linear"), bad);
+  EXPECT_THROW(haptic::run_haptic(without_mass, press_down(kTop, 0.003, 0.1), 20), InputError);
+  haptic::HapticScene negative(b.mesh, b.config(15, "linear"), modal(0.03, -1));
+  EXPECT_THROW(haptic::run_haptic(negative, press_down(kTop, 0.003, 0.1), 20), InputError);
+  const nlohmann::json model = {{"mesh", "unused"},
+                                {"material", {{"E", 5000.0}, {"nu", 0.35}, {"density", 1000.0}}},
+                                {"boundary", {{"fixed", {{{"set", "bottom"}}}}}}};
+  const nlohmann::json input = {{"kind", "press"}, {"start", {0.05, 0.05, 0.06}}, {"direction", {0, 0, -1}},
+                                {"depth", 0.005}, {"ramp_time", 0.2}};
+  auto read = [&](const nlohmann::json& regions) {
+    const nlohmann::json cfg = {{"model", model}, {"probe", {{"stiffness", 100}}}, {"input", input}, {"regions", regions}};
+    return haptic::read_haptic_config(io::JsonReader(cfg, "scene.json"), *b.mesh);
+  };
+  EXPECT_EQ(read({{"radius", 0.02}, {"secondary", "guyan"}, {"modes", 7}}).options.regions.far_field_modes, 7);
+  for (const nlohmann::json& regions : {nlohmann::json{{"radius", 0.02}, {"modes", 4}},
+                                        nlohmann::json{{"radius", 0.02}, {"secondary", "guyan"}, {"modes", -1}},
+                                        nlohmann::json{{"radius", 0.02}, {"secondary", "guyan"}, {"modes", 1.5}}}) {
+    try {
+      read(regions);
+      ADD_FAILURE() << regions.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("/regions/modes"), std::string::npos) << e.what();
+    }
+  }
+}
