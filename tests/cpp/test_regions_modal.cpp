@@ -46,27 +46,28 @@ haptic::HapticOptions whole_model() {
   return opt;
 }
 
-// 001 Fig. 6's chirp, 3 mm, 0 → 40 Hz over 0.6 s: fast enough that the far field's own
-// dynamics show.
+// 001 Fig. 6's chirp, 3 mm, 0 → 10 Hz over 0.6 s: fast enough that the far field's own
+// dynamics show beyond its static shape.
 haptic::ProbePath chirp() {
   haptic::ProbePath path = press_down(kTop, 0.003, 0.1);
   path.kind = haptic::ProbePath::Kind::chirp;
   path.signal.kind = multirate::ProbeSignal::Kind::kChirp;
   path.signal.amplitude = 0.003;
   path.signal.start_frequency = 0;
-  path.signal.end_frequency = std::getenv("XF") ? std::atof(std::getenv("XF")) : 40;
+  path.signal.end_frequency = 10;
   path.signal.sweep_time = 0.6;
   return path;
 }
 
-// Largest force difference over the run, relative to the reference's peak force.
+// RMS force difference over the run, relative to the reference's peak force (the experiments'
+// measure).
 double relative_error(const haptic::HapticRecord& a, const haptic::HapticRecord& ref) {
-  double largest = 0, peak = 0;
+  double sum = 0, peak = 0;
   for (std::size_t k = 0; k < ref.force.size(); ++k) {
-    largest = std::max(largest, (a.force[k] - ref.force[k]).norm());
+    sum += (a.force[k] - ref.force[k]).squaredNorm();
     peak = std::max(peak, ref.force[k].norm());
   }
-  return largest / peak;
+  return std::sqrt(sum / static_cast<double>(ref.force.size())) / peak;
 }
 
 regions::PrimaryRegion region_at_top(const mesh::TetMesh& m, double radius) {
@@ -132,11 +133,6 @@ TEST(ModalFarField, EveryModeIsTheWholeLinearModelAndFewModesBeatGuyan) {
     ASSERT_TRUE(regions.events().empty());
     ASSERT_FALSE(regions.regions()->active()->region().interface.empty());
     err[k] = relative_error(rr, rw);
-  }
-  for (int mm : {1, 2, 4, 8, 16, 32, 64, 128, 256, 512}) {
-    haptic::HapticScene regions(b.mesh, b.config(15, "linear"), modal(0.03, mm));
-    const auto rr = haptic::run_haptic(regions, path, frames);
-    std::printf("modes %d err %g events %zu\n", mm, relative_error(rr, rw), regions.events().size());
   }
   EXPECT_GT(err[0], 1e-3) << "the chirp should stir the far field's own dynamics";
   EXPECT_LT(err[1], 0.5 * err[0]) << err[1] << " vs Guyan " << err[0];

@@ -1,7 +1,6 @@
 #include "softsim/regions/secondary_region.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <utility>
 
 #include "softsim/dynamics/central_difference.hpp"
@@ -237,7 +236,6 @@ std::vector<double> CondensedSecondary::interface_masses() {
     Eigen::VectorXd z = K_si_.transpose() * w;
     // The modes carry LᵀL of it (header): the residual mass is what stays on the interface.
     if (modes() > 0) z -= L_.transpose() * (L_ * e);
-    if (modes() > 0 && std::getenv("XNORES")) z *= 0.0;
     for (int k = 0; k < ni; ++k)
       if (interface_[k] % 3 == c) {
         sum[interface_slot_[k] / 3] += z[k];
