@@ -1,0 +1,62 @@
+"""The modal far-field report: each regions run is compared with the whole model of the same
+scene and input; the far field is named from its config; the plain line says which far field
+meets the 1 % target with every input, or by how much the best one misses it."""
+import numpy as np
+
+from pipeline.reports import haptic_regions_modal as rep
+from report_ctx import FakeContext, run
+
+PRESS = {"kind": "press", "ramp_time": 0.5}
+CHIRP = {"kind": "chirp"}
+
+
+def scene_run(force, inp, regions=None, events=0):
+    payload = {"force": force.tolist(), "time": list(np.arange(len(force)) * 1e-3),
+               "timing": {"frame_seconds_mean": 1e-3}, "events": [{"frame": 1, "message": "x"}] * events}
+    config = {"input": inp}
+    if regions is not None:
+        config["regions"] = regions
+        payload["regions"] = {"frames": len(force), "interface_seconds_total": 1e-3, "build_seconds_total": 0.5,
+                              "builds": 1}
+    return run(payload, config)
+
+
+GUYAN = {"secondary": "guyan"}
+MODAL = {"secondary": "guyan", "modes": 8}
+
+
+def runs_for(w, guyan_scale, modal_scale, modal_events=0):
+    return {"cube_whole": [scene_run(w, PRESS), scene_run(w, CHIRP)],
+            "cube_massless": [scene_run(1.3 * w, PRESS, {}), scene_run(1.3 * w, CHIRP, {})],
+            "cube_guyan": [scene_run(w, PRESS, GUYAN), scene_run(guyan_scale * w, CHIRP, GUYAN)],
+            "cube_modal": [scene_run(w, PRESS, MODAL), scene_run(modal_scale * w, CHIRP, MODAL, modal_events)]}
+
+
+def test_far_fields_are_named_and_errors_are_against_the_same_input(tmp_path):
+    t = np.linspace(0, 1, 200)
+    w = np.stack([0 * t, 0 * t, np.sin(6 * t)], axis=1)
+    ctx = FakeContext(tmp_path, runs=runs_for(w, 1.03, 1.005))
+    rep.report(ctx)
+    rows = rep.rows_of(ctx)
+    assert [r["far"] for r in rows if r["input"] == "chirp"] == ["massless", "Guyan", "8 modes"]
+    peak = np.abs(w[:, 2]).max()
+    expected = 100 * 0.03 * np.sqrt(np.mean(w[:, 2] ** 2)) / peak
+    assert np.isclose(rep.pick(rows, "cube", "chirp", "Guyan")["rms"], expected)
+    assert rep.pick(rows, "cube", "press", "Guyan")["rms"] == 0.0
+    text = (tmp_path / "regions_modal_summary.md").read_text()
+    assert "the far field with 8 modes meets the 1 % target with every input" in text
+    assert "Guyan alone: worst" in text
+    assert "### The liver" not in text  # a scene without runs is left out
+    assert (tmp_path / "regions_modal.md").exists() and (tmp_path / "regions_modal_forces.png").exists()
+
+
+def test_a_miss_is_stated_with_its_size_and_a_run_with_events_does_not_count(tmp_path):
+    t = np.linspace(0, 1, 200)
+    w = np.stack([0 * t, 0 * t, np.sin(6 * t)], axis=1)
+    rep.report(FakeContext(tmp_path, runs=runs_for(w, 1.03, 1.02)))
+    text = (tmp_path / "regions_modal_summary.md").read_text()
+    assert "no far field meets the 1 % target with every input; the best, 8 modes, misses it by" in text
+    # The modal run restarted: it does not count, and Guyan (3 %) is the best left.
+    rep.report(FakeContext(tmp_path, runs=runs_for(w, 1.03, 1.0, modal_events=2)))
+    text = (tmp_path / "regions_modal_summary.md").read_text()
+    assert "the best, Guyan, misses it" in text and "(2 events)" in text
