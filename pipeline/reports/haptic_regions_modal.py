@@ -83,6 +83,27 @@ def forces_plot(ctx, rows):
     plots.save(fig, ctx.out("regions_modal_forces.png"))
 
 
+def fine_rows(ctx):
+    """The refined liver: Guyan against Guyan + modes, each at the far-field recovery it ran with,
+    against the whole model's chirp; error and frame time."""
+    whole = runs_of(ctx, "fine_whole")
+    if not whole:
+        return []
+    w = whole[0].payload
+    fw = np.array(w["force"])
+    out = []
+    for run in runs_of(ctx, "fine_guyan") + runs_of(ctx, "fine_modal"):
+        p, reg = run.payload, run.payload["regions"]
+        rms, peak = errors(np.array(p["force"]), fw)
+        t = p["timing"]
+        out.append({"radius": reg["radius"], "far": far_field(run), "every": reg["secondary_every"],
+                    "interface": (reg["primary"] or {}).get("interface_nodes"), "rms": rms, "peak": peak,
+                    "mean": t["frame_seconds_mean"], "p50": t["frame_seconds_p50"], "p99": t["frame_seconds_p99"],
+                    "misses": t["deadline_misses"], "frames": len(p["force"]), "build_s": reg["build_seconds_total"],
+                    "whole_mean": w["timing"]["frame_seconds_mean"], "events": len(p["events"])})
+    return sorted(out, key=lambda r: (-r["radius"], far_order(r["far"]), r["every"]))
+
+
 def report(ctx):
     rows = rows_of(ctx)
     write_table(ctx, "regions_modal",
@@ -98,7 +119,20 @@ def report(ctx):
                 "time includes the modes' eigensolution. One thread on "
                 f"{cpu_description()} while other work ran: times are upper bounds.")
     forces_plot(ctx, rows)
-    ctx.out("regions_modal_summary.md").write_text("\n".join(summary_lines(rows)) + "\n")
+    fine = fine_rows(ctx)
+    if fine:
+        write_table(ctx, "regions_modal_fine",
+                    ["radius (m)", "far field", "recovered every (frames)", "interface nodes", "RMS error (%)",
+                     "peak error (%)", "frame mean (ms)", "frame p50 (ms)", "frame p99 (ms)", "frames over 1 ms",
+                     "region build (s)", "whole mean (ms)", "events"],
+                    [[r["radius"], r["far"], r["every"], r["interface"], r["rms"], r["peak"], 1e3 * r["mean"],
+                      1e3 * r["p50"], 1e3 * r["p99"], r["misses"], r["build_s"], 1e3 * r["whole_mean"], r["events"]]
+                     for r in fine],
+                    "Refined liver (88 576 tets), attached probe 20 N/m, stable neo-Hookean, 001's chirp for 1 s, "
+                    "condensed regions with a single-precision interface product. The frame time includes the "
+                    "region's build (in the frame of first contact). One thread on "
+                    f"{cpu_description()} while other work ran: times are upper bounds.")
+    ctx.out("regions_modal_summary.md").write_text("\n".join(summary_lines(rows) + fine_lines(fine)) + "\n")
 
 
 def summary_lines(rows):
@@ -148,3 +182,25 @@ def plain_line(rows, scene, names, inputs):
                 f"every input, worst {w['rms']:.3g} % RMS ({w['input']}){base}.")
     return (f"In plain words: on the {SCENE_NAME[scene]} no far field meets the {TARGET:g} % target with every input; the "
             f"best, {far}, misses it by {w['rms'] - TARGET:.3g} points on the {w['input']} ({w['rms']:.3g} % RMS){base}.")
+
+
+def fine_lines(fine):
+    if not fine:
+        return []
+    L = ["### The refined liver ([table](regions_modal_fine.md))", ""]
+    for r in fine:
+        L.append(f"- radius {r['radius']:g} m ({r['interface']} interface nodes), {r['far']}, recovered every "
+                 f"{r['every']} frames: {r['rms']:.3g} % RMS; {1e3 * r['mean']:.3g} ms mean per frame (p50 "
+                 f"{1e3 * r['p50']:.3g}, p99 {1e3 * r['p99']:.3g}), {r['misses']} of {r['frames']} frames over 1 ms; "
+                 f"whole model {1e3 * r['whole_mean']:.3g} ms.")
+    met = [r for r in fine if r["far"] != "Guyan" and r["events"] == 0 and r["rms"] <= TARGET]
+    best = min(fine, key=lambda r: r["rms"])
+    if met:
+        fast = min(met, key=lambda r: r["mean"])
+        L += ["", f"In plain words: on the refined liver the modes take the chirp under the {TARGET:g} % target: "
+                  f"{fast['rms']:.3g} % RMS at radius {fast['radius']:g} m, {1e3 * fast['mean']:.3g} ms mean per frame "
+                  f"with {fast['misses']} of {fast['frames']} frames over 1 ms."]
+    else:
+        L += ["", f"In plain words: on the refined liver no setting meets the {TARGET:g} % target on the chirp; the "
+                  f"best is {best['rms']:.3g} % RMS ({best['far']}, radius {best['radius']:g} m)."]
+    return L

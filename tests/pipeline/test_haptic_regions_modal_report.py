@@ -60,3 +60,26 @@ def test_a_miss_is_stated_with_its_size_and_a_run_with_events_does_not_count(tmp
     rep.report(FakeContext(tmp_path, runs=runs_for(w, 1.03, 1.0, modal_events=2)))
     text = (tmp_path / "regions_modal_summary.md").read_text()
     assert "the best, Guyan, misses it" in text and "(2 events)" in text
+
+
+def test_the_refined_liver_compares_guyan_and_modes_with_their_frame_time(tmp_path):
+    w = np.stack([np.zeros(10), np.zeros(10), np.linspace(0.1, 1, 10)], axis=1)
+
+    def fine(scale, regions, mean):
+        r = scene_run(scale * w, CHIRP, regions)
+        r.payload["regions"].update({"radius": 0.015, "secondary_every": 1000, "primary": {"interface_nodes": 116}})
+        r.payload["timing"] = {"frame_seconds_mean": mean, "frame_seconds_p50": mean, "frame_seconds_p99": 2 * mean,
+                               "deadline_misses": 1}
+        return r
+
+    whole = scene_run(w, CHIRP)
+    whole.payload["timing"]["frame_seconds_mean"] = 0.05
+    runs = {"fine_whole": [whole], "fine_guyan": [fine(1.04, GUYAN, 2e-4)], "fine_modal": [fine(1.005, MODAL, 3e-4)]}
+    rep.report(FakeContext(tmp_path, runs=runs))
+    text = (tmp_path / "regions_modal_summary.md").read_text()
+    assert "### The refined liver" in text
+    assert "the modes take the chirp under the 1 % target" in text and "0.3 ms mean per frame" in text
+    assert (tmp_path / "regions_modal_fine.md").exists()
+    runs["fine_modal"] = [fine(1.03, MODAL, 3e-4)]
+    rep.report(FakeContext(tmp_path, runs=runs))
+    assert "no setting meets the 1 % target on the chirp" in (tmp_path / "regions_modal_summary.md").read_text()
