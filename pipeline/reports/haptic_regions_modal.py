@@ -7,7 +7,7 @@ import numpy as np
 from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.reports.haptic_regions import errors, runs_of
-from pipeline.reports.haptic_regions_liver import input_label
+from pipeline.reports.haptic_regions_liver import input_label, realtime_line
 from pipeline.tables import write_table
 
 SCENES = ("cube", "liver")
@@ -137,7 +137,9 @@ def report(ctx):
                     "first frame (its build time, the modes' eigensolution included, is not in the frame time). One "
                     "thread on "
                     f"{cpu_description()} while other work ran: times are upper bounds.")
-    ctx.out("regions_modal_summary.md").write_text("\n".join(summary_lines(rows) + fine_lines(fine)) + "\n")
+    served = [realtime_line(run) for run in runs_of(ctx, "fine_realtime")]
+    ctx.out("regions_modal_summary.md").write_text("\n".join(summary_lines(rows) + fine_lines(fine) +
+                                                             [x for line in served for x in ("", line)]) + "\n")
 
 
 def summary_lines(rows):

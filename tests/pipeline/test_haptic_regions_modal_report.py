@@ -80,6 +80,13 @@ def test_the_refined_liver_compares_guyan_and_modes_with_their_frame_time(tmp_pa
     assert "### The refined liver" in text
     assert "the modes take the chirp under the 1 % target" in text and "0.3 ms mean per frame" in text
     assert (tmp_path / "regions_modal_fine.md").exists()
+    served = {"round_trip_seconds": [2e-4] * 999 + [3e-3], "events": 0,
+              "timing": {"frame_seconds_p50": 1e-4, "frame_seconds_p99": 2e-4},
+              "regions": {"radius": 0.015, "secondary": "guyan", "modes": 32, "precision": "single"}}
+    runs["fine_realtime"] = [run(served)]
+    rep.report(FakeContext(tmp_path, runs=runs))
+    text = (tmp_path / "regions_modal_summary.md").read_text()
+    assert "Guyan mass and 32 modes" in text and "1 of 1000 answers later than 1 ms" in text
     runs["fine_modal"] = [fine(1.03, MODAL, 3e-4)]
     rep.report(FakeContext(tmp_path, runs=runs))
     assert "no setting meets the 1 % target on the chirp" in (tmp_path / "regions_modal_summary.md").read_text()
