@@ -1,5 +1,5 @@
 // The far field's fixed-interface modes (Craig–Bampton) on the condensed regions: with no modes
-// the Guyan far field is left; every mode carries the whole Guyan mass and makes the regions the
+// the Guyan far field is left, bit for bit; the subspace iteration finds the lowest eigenpairs; every mode carries the whole Guyan mass and makes the regions the
 // whole linear model under a dynamic input, to round-off; a few lowest modes already remove most
 // of the Guyan far field's dynamic error; a region covering the mesh is still the whole model bit
 // for bit; the mode count is checked.
@@ -8,13 +8,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/haptic/haptic_config.hpp"
 #include "softsim/haptic/haptic_run.hpp"
 #include "softsim/haptic/haptic_scene.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/regions/primary_region.hpp"
+#include "softsim/regions/dof_blocks.hpp"
+#include "softsim/regions/far_field_modes.hpp"
 #include "softsim/regions/secondary_region.hpp"
+#include "softsim/regions/sparse_cholesky.hpp"
 
 #include "support/haptic_block.hpp"
 #include "support/scenes.hpp"
@@ -110,6 +115,58 @@ TEST(ModalFarField, ModesTakeOverTheGuyanMassUntilNoneIsLeft) {
     EXPECT_GT(far.mode_omega2()[j], 0.0);
     if (j > 0) EXPECT_GE(far.mode_omega2()[j], far.mode_omega2()[j - 1]);
   }
+}
+
+// Zero modes is the Guyan far field itself: the same interface force and the same masses, bit
+// for bit.
+TEST(ModalFarField, ZeroModesIsGuyan) {
+  Block b;
+  const auto& m = *b.mesh;
+  const regions::PrimaryRegion r = region_at_top(m, 0.03);
+  const fem::Material material = b.config(10).material;
+  const regions::LinearModel linear(m, material, std::vector<char>(3 * m.num_nodes(), 0),
+                                    Eigen::VectorXd::Zero(3 * m.num_nodes()),
+                                    dynamics::lumped_mass(m, material.elastic.density));
+  regions::CondensedSecondary guyan(linear, r), none(linear, r);
+  none.use_modes(0, 1e-4, 10);
+  EXPECT_EQ(none.modes(), 0);
+  EXPECT_EQ(guyan.interface_masses(), none.interface_masses());
+  std::vector<double> u(3 * r.interface.size()), f1(u.size()), f2(u.size());
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] = 1e-3 * std::sin(0.7 * static_cast<double>(k));
+  guyan.interface_force(u.data(), 0, f1.data());
+  none.interface_force(u.data(), 0, f2.data());
+  EXPECT_EQ(f1, f2);
+}
+
+// Above the dense size the modes come from the subspace iteration: each is an eigenpair of
+// (K, M) to a small residual, mass-normalised, and the lowest ones agree with a dense solution.
+TEST(ModalFarField, TheSubspaceIterationFindsTheLowestEigenpairs) {
+  const mesh::TetMesh m = test_scenes::cuboid(9, 9, 6, 0.1, 0.1, 0.06);
+  const fem::Material material = Block().config(10).material;
+  std::vector<char> fixed(3 * m.num_nodes(), 0);
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (m.nodes[i].z() < 1e-12) fixed[3 * i] = fixed[3 * i + 1] = fixed[3 * i + 2] = 1;
+  const regions::LinearModel linear(m, material, fixed, Eigen::VectorXd::Zero(3 * m.num_nodes()));
+  const std::vector<int> dofs = regions::free_dofs(m.num_nodes(), fixed, [](int) { return true; });
+  ASSERT_GT(dofs.size(), 1500u);  // past the dense path
+  const Eigen::SparseMatrix<double> K = regions::dof_block(linear.K, dofs, dofs);
+  const std::vector<double> node_mass = dynamics::lumped_mass(m, material.elastic.density);
+  Eigen::VectorXd mass(static_cast<int>(dofs.size()));
+  for (std::size_t k = 0; k < dofs.size(); ++k) mass[static_cast<int>(k)] = node_mass[dofs[k] / 3];
+  regions::SparseCholesky factor;
+  factor.factorize(K, "test");
+  const regions::FarFieldModes modes = regions::lowest_modes(K, mass, factor, 6);
+  ASSERT_EQ(modes.phi.cols(), 6);
+  const Eigen::MatrixXd I = modes.phi.transpose() * mass.asDiagonal() * modes.phi;
+  EXPECT_LT((I - Eigen::MatrixXd::Identity(6, 6)).norm(), 1e-9);
+  for (int j = 0; j < 6; ++j) {
+    const Eigen::VectorXd residual = K * modes.phi.col(j) - modes.omega2[j] * mass.asDiagonal() * modes.phi.col(j);
+    EXPECT_LT(residual.norm(), 1e-4 * modes.omega2[j] * (mass.asDiagonal() * modes.phi.col(j)).norm()) << j;
+  }
+  const Eigen::VectorXd s = mass.cwiseSqrt().cwiseInverse();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> dense(s.asDiagonal() * Eigen::MatrixXd(K) * s.asDiagonal(),
+                                                             Eigen::EigenvaluesOnly);
+  for (int j = 0; j < 6; ++j) EXPECT_NEAR(modes.omega2[j], dense.eigenvalues()[j], 1e-8 * dense.eigenvalues()[j]) << j;
 }
 
 // Every mode kept: the far field in modal coordinates is the far field, and the same central
