@@ -185,8 +185,12 @@ def plain_line(rows, scene, names, inputs):
     guyan = worst(rows, scene, "Guyan", inputs)
     base = f" (Guyan alone: worst {guyan['rms']:.3g} %, {guyan['input']})" if guyan is not None and far != "Guyan" else ""
     if w["rms"] <= TARGET:
+        first = next(f for f in names if (x := worst(rows, scene, f, inputs)) is not None and x["rms"] <= TARGET)
+        fewest = "" if first == far else (
+            f"; the fewest that meet it: {first}, worst {worst(rows, scene, first, inputs)['rms']:.3g} % "
+            f"({worst(rows, scene, first, inputs)['input']})")
         return (f"In plain words: on the {SCENE_NAME[scene]} the far field with {far} meets the {TARGET:g} % target with "
-                f"every input, worst {w['rms']:.3g} % RMS ({w['input']}){base}.")
+                f"every input, worst {w['rms']:.3g} % RMS ({w['input']}){fewest}{base}.")
     return (f"In plain words: on the {SCENE_NAME[scene]} no far field meets the {TARGET:g} % target with every input; the "
             f"best, {far}, misses it by {w['rms'] - TARGET:.3g} points on the {w['input']} ({w['rms']:.3g} % RMS){base}.")
 
