@@ -247,18 +247,24 @@ def summary_lines(rows, fine, realtime=()):
                      f"{fmt_run(r)} against the whole model ({1e3 * r['whole_mean']:.3g} ms per frame).")
         L += ["", "In plain words: " + fine_words(fine)]
     for run in realtime:
-        p = run.payload
-        rt = np.array(p["round_trip_seconds"])
-        reg = p["regions"] or {}
-        L += ["", f"Real-time loop (`haptic_sim serve` over a pipe, paced at 1 kHz for {len(rt) / 1000:g} s, a press "
-              f"held; radius {reg.get('radius', float('nan')):g} m, {FAR.get(reg.get('secondary'), '')}, "
-              f"{reg.get('precision', '')} precision, no pictures): round trip median {1e3 * np.median(rt):.3g} ms, "
-              f"p99 {1e3 * np.percentile(rt, 99):.3g} ms, max {1e3 * rt.max():.3g} ms; {int((rt > 1e-3).sum())} of "
-              f"{len(rt)} answers later than 1 ms; compute per frame p50 {1e3 * p['timing']['frame_seconds_p50']:.3g} ms, "
-              f"p99 {1e3 * p['timing']['frame_seconds_p99']:.3g} ms; {p['events']} events"
-              + (f"; the first answer waited for the region's set-up ({reg['build_seconds_max']:.3g} s, built at the "
-                 "first contact)" if reg.get("build_seconds_max") else "") + "."]
+        L += ["", realtime_line(run)]
     return L
+
+
+def realtime_line(run):
+    """One served run: `haptic_sim serve` paced at 1 kHz, its round trips and compute per frame."""
+    p = run.payload
+    rt = np.array(p["round_trip_seconds"])
+    reg = p["regions"] or {}
+    far = FAR.get(reg.get("secondary"), "") + (f" and {reg['modes']} modes" if reg.get("modes") else "")
+    return (f"Real-time loop (`haptic_sim serve` over a pipe, paced at 1 kHz for {len(rt) / 1000:g} s, a press "
+            f"held; radius {reg.get('radius', float('nan')):g} m, {far}, "
+            f"{reg.get('precision', '')} precision, no pictures): round trip median {1e3 * np.median(rt):.3g} ms, "
+            f"p99 {1e3 * np.percentile(rt, 99):.3g} ms, max {1e3 * rt.max():.3g} ms; {int((rt > 1e-3).sum())} of "
+            f"{len(rt)} answers later than 1 ms; compute per frame p50 {1e3 * p['timing']['frame_seconds_p50']:.3g} ms, "
+            f"p99 {1e3 * p['timing']['frame_seconds_p99']:.3g} ms; {p['events']} events"
+            + (f"; the first answer waited for the region's set-up ({reg['build_seconds_max']:.3g} s, built at the "
+               "first contact)" if reg.get("build_seconds_max") else "") + ".")
 
 
 def plain_words(rows):

@@ -139,6 +139,10 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
       r->fail_member("secondary", "\"static\" or \"guyan\" with the condensed coupling (an implicit-dynamic secondary needs \"exchange\")");
     if (o.far_field_mass && o.coupling != regions::Coupling::condensed)
       r->fail_member("secondary", "\"static\" or \"implicit\" with the exchange coupling (\"guyan\" needs \"condensed\")");
+    o.far_field_modes = r->get_int32("modes", 0);
+    r->require(o.far_field_modes >= 0 && o.far_field_modes <= 500, "modes", "a mode count in [0, 500]");
+    if (o.far_field_modes > 0 && !o.far_field_mass)
+      r->fail_member("modes", "0 unless \"secondary\" is \"guyan\" (the modes complete the Guyan far field)");
     o.single_precision = r->get_choice("precision", {"double", "single"}, "double") == "single";
     if (o.single_precision && o.coupling != regions::Coupling::condensed)
       r->fail_member("precision", "\"double\" with the exchange coupling (\"single\" is the condensed interface product)");

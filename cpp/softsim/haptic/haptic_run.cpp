@@ -103,6 +103,7 @@ nlohmann::json regions_payload(const HapticScene& scene) {
           {"secondary_every", o.secondary_every},
           {"interpolate", o.interpolate},
           {"secondary", o.secondary_dynamic ? "implicit" : o.far_field_mass ? "guyan" : "static"},
+          {"modes", o.far_field_modes},
           {"precision", o.single_precision ? "single" : "double"},
           {"skip_below", o.skip_below},
           {"primary", region},

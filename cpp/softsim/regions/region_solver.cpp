@@ -40,6 +40,9 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
   if (!(options.skip_below >= 0)) throw InputError("regions: skip_below must not be negative");
   if (options.far_field_mass && options.coupling != Coupling::condensed)
     throw InputError("regions: the far field's mass on the interface (Guyan) needs the condensed coupling");
+  if (options.far_field_modes < 0) throw InputError("regions: far_field_modes must not be negative");
+  if (options.far_field_modes > 0 && !options.far_field_mass)
+    throw InputError("regions: the far field's modes (Craig-Bampton) need its Guyan mass on the interface");
   if (options.single_precision && options.coupling != Coupling::condensed)
     throw InputError("regions: a single-precision interface product needs the condensed coupling");
   // Gravity acts on the primary's masses and, condensed, on the far field's (h): a far-field
@@ -96,6 +99,8 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
     stats_.secondary_setup_seconds = seconds_since(t1);
   }
   if (condensed_ && options.single_precision) condensed_->use_single_precision();
+  if (condensed_ && options.far_field_modes > 0)
+    condensed_->use_modes(options.far_field_modes, dt, hybrid::explicit_options(model, dt).damping_alpha);
   if (condensed_ && options.far_field_mass) {
     // Guyan: the far field's mass rides on the interface; the model's damping α M follows it.
     const std::vector<double> extra = condensed_->interface_masses();
@@ -141,6 +146,7 @@ void RegionSolver::start_from(const std::vector<double>& u, const std::vector<do
       solver_->set_prescribed_displacement(static_cast<int>(a), Eigen::Vector3d(interface_last_.data() + 3 * a));
     exchange_->start_at(u_.data());
   }
+  if (condensed_) condensed_->start_modes(u_.data());
   last_update_ = stats_.frames;
   input_at_update_.assign(u_.begin(), u_.end());
 }
@@ -184,6 +190,7 @@ void RegionSolver::frame(const std::vector<dynamics::AppliedForce>& forces) {
         applied_.push_back({region_.interface_local[a], Eigen::Vector3d(interface_f_.data() + 3 * a)});
       solver_->set_applied_forces(applied_);
       solver_->advance(1);
+      condensed_->advance_modes();  // the far field's modes step with it, from the same u_I
     }
   }
   publish_primary();

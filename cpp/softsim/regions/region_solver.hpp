@@ -9,7 +9,8 @@
 //               values it publishes, held or interpolated between updates (001 Fig. 4);
 //   condensed:  its stiffness condensed onto the interface, a force on the primary region at
 //               every substep; its own nodes recovered every `secondary_every` frames (pictures);
-//               optionally its mass too (Guyan), lumped onto the interface nodes.
+//               optionally its mass too (Guyan), lumped onto the interface nodes, and a few
+//               of its fixed-interface modes stepped with the primary region (Craig–Bampton).
 // Skipping (issue: "skip what the scene does not need"): a secondary update whose input moved
 // by less than `skip_below` since the last update is not done; the count is kept.
 // Rigid tools (the model's boundary.tools) act on the primary region's interior nodes only: the
@@ -61,6 +62,9 @@ struct RegionOptions {
   // Condensed: the far field's inertia in its static shape (Guyan), lumped onto the interface
   // nodes of the primary region (secondary_region.hpp) instead of a massless far field.
   bool far_field_mass = false;
+  // Condensed with the Guyan mass: this many of the far field's lowest fixed-interface modes
+  // kept and stepped with the primary region (Craig–Bampton; secondary_region.hpp). 0: Guyan.
+  int far_field_modes = 0;
   // Condensed: the interface product in single precision (CondensedSecondary::use_single_precision).
   bool single_precision = false;
   AdaptiveRadius adaptive;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "softsim/dynamics/central_difference.hpp"
 #include "softsim/fem/assembly.hpp"
 #include "softsim/io/errors.hpp"
 #include "softsim/regions/dof_blocks.hpp"
@@ -153,7 +154,60 @@ void CondensedSecondary::interface_force(const double* u_interface, double gravi
   } else {
     f_i_.noalias() = S_ * u_i_;
   }
+  if (modes() > 0) {
+    // The modes' pull on the interface, LᵀΩ² (z − L u_I) (Craig–Bampton in z, header).
+    Lu_.noalias() = L_ * u_i_;
+    eta_ = z_ - Lu_;
+    f_i_.noalias() -= G_ * eta_;
+  }
   for (int k = 0; k < ni; ++k) force[interface_slot_[k]] = -f_i_[k] - gravity_factor * h_[k];
+}
+
+void CondensedSecondary::use_modes(int count, double dt, double damping_alpha) {
+  if (model_->masses.empty()) throw InputError("regions: the far field's modes need the lumped masses");
+  const int ns = static_cast<int>(secondary_.size());
+  Eigen::VectorXd mass(ns);
+  for (int k = 0; k < ns; ++k) mass[k] = model_->masses[secondary_[k] / 3];
+  const Eigen::SparseMatrix<double> K_ss = dof_block(model_->K, secondary_, secondary_);
+  // model_->K holds the primary elements too, but K_SS over the far field's own dofs sees only
+  // far-field elements (a far node touches no primary element).
+  FarFieldModes m = lowest_modes(K_ss, mass, solver_, count);
+  phi_ = std::move(m.phi);
+  omega2_ = std::move(m.omega2);
+  // L = Φᵀ M Ψ = −(K_SS⁻¹ M Φ)ᵀ K_SI, computed as written so that it holds for Ritz vectors too.
+  Eigen::MatrixXd W = mass.asDiagonal() * phi_;
+  solver_.solve_in_place(W);
+  L_ = -(W.transpose() * K_si_);
+  G_ = L_.transpose() * omega2_.asDiagonal();
+  const int mm = modes();
+  z_.setZero(mm);
+  z_before_.setZero(mm);
+  z_next_.setZero(mm);
+  Lu_.setZero(mm);
+  eta_.setZero(mm);
+  const dynamics::CentralDifference cd = dynamics::central_difference(1.0, damping_alpha, dt);
+  cd_A_ = cd.A;
+  cd_B_ = cd.B;
+  cd_C_ = cd.C;
+}
+
+void CondensedSecondary::start_modes(const double* u) {
+  if (modes() == 0) return;
+  for (int j = 0; j < modes(); ++j) {
+    double s = 0;
+    for (std::size_t k = 0; k < secondary_.size(); ++k)
+      s += phi_(static_cast<int>(k), j) * model_->masses[secondary_[k] / 3] * u[secondary_[k]];
+    z_[j] = s;
+  }
+  z_before_ = z_;
+}
+
+void CondensedSecondary::advance_modes() {
+  // z_{n+1} = A Ω² (L u_I − z_n) + B z_n − C z_{n−1}: 000 eq. 33 for each unit-mass mode.
+  for (int j = 0; j < modes(); ++j)
+    z_next_[j] = cd_A_ * omega2_[j] * (Lu_[j] - z_[j]) + cd_B_ * z_[j] - cd_C_ * z_before_[j];
+  z_before_.swap(z_);
+  z_.swap(z_next_);
 }
 
 void CondensedSecondary::use_single_precision() {
@@ -179,7 +233,9 @@ std::vector<double> CondensedSecondary::interface_masses() {
     solver_.solve_in_place(w);
     for (int k = 0; k < ns; ++k) w[k] *= model_->masses[secondary_[k] / 3];
     solver_.solve_in_place(w);
-    const Eigen::VectorXd z = K_si_.transpose() * w;
+    Eigen::VectorXd z = K_si_.transpose() * w;
+    // The modes carry LᵀL of it (header): the residual mass is what stays on the interface.
+    if (modes() > 0) z -= L_.transpose() * (L_ * e);
     for (int k = 0; k < ni; ++k)
       if (interface_[k] % 3 == c) {
         sum[interface_slot_[k] / 3] += z[k];
@@ -197,6 +253,12 @@ void CondensedSecondary::recover(double* u, double gravity_factor) {
   rhs_.noalias() = gravity_factor * g_s_;
   rhs_.noalias() -= K_si_ * u_i_;
   solver_.solve_in_place(rhs_);
+  if (modes() > 0) {
+    // u_S = Ψ u_I + Φ (z − L u_I): the static shape plus the modes' motion relative to it.
+    Lu_.noalias() = L_ * u_i_;
+    eta_ = z_ - Lu_;
+    rhs_.noalias() += phi_ * eta_;
+  }
   for (std::size_t k = 0; k < secondary_.size(); ++k) u[secondary_[k]] = rhs_[k];
 }
 

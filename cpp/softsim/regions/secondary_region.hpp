@@ -24,6 +24,17 @@
 //     to the primary region's interface nodes: the far field's inertia with no lag and no cost
 //     per substep (a heavier interface only lengthens the critical step). Exact in statics;
 //     in dynamics it misses only the far field's motion relative to that static shape.
+//
+//   Condensation with a modal far field (Craig & Bampton 1968): u_S = Ψ u_I + Φ η with Φ a few
+//     fixed-interface modes (far_field_modes.hpp). Written in z = η + L u_I, L = Φᵀ M_SS Ψ (the
+//     modal coordinates of the far field's whole displacement), the kinetic energy separates,
+//       T = ½ u̇_Iᵀ (Ψᵀ M_SS Ψ − LᵀL) u̇_I + ½ żᵀż,
+//     and the potential is ½ u_Iᵀ S_II u_I + ½ (z − L u_I)ᵀ Ω² (z − L u_I), so
+//       interface force  −S_II u_I + LᵀΩ² (z − L u_I),   residual mass Ψᵀ M_SS Ψ − LᵀL (lumped),
+//       each mode        z̈ + α ż + Ω² z = Ω² L u_I,
+//     driven by the interface's displacement alone: no mass coupling, so each mode takes the same
+//     explicit central-difference step as the primary region (000 eq. 33) at the cost of a
+//     product with L per substep. No modes: Guyan. Every mode: the whole linear far field.
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,6 +42,7 @@
 
 #include "softsim/fem/constitutive.hpp"
 #include "softsim/mesh/tet_mesh.hpp"
+#include "softsim/regions/far_field_modes.hpp"
 #include "softsim/regions/primary_region.hpp"
 #include "softsim/regions/sparse_cholesky.hpp"
 
@@ -95,7 +107,19 @@ class CondensedSecondary {
   // Guyan: the far field's mass carried by each interface node (kg, in region.interface order):
   // the row sums of Ψᵀ M_SS Ψ along each direction, averaged over the node's free directions,
   // from two solves per direction. Needs the model's lumped masses.
+  // With modes (use_modes), less the part the modes carry (LᵀL, row sums likewise).
   std::vector<double> interface_masses();
+  // Keeps the `count` lowest fixed-interface modes of the far field, stepped with the primary
+  // region's explicit step `dt` and damping α M (Craig–Bampton, above). Needs the lumped masses.
+  // Call before interface_masses().
+  void use_modes(int count, double dt, double damping_alpha);
+  int modes() const { return static_cast<int>(omega2_.size()); }
+  const Eigen::VectorXd& mode_omega2() const { return omega2_; }
+  // Modes: the state from the far field's displacement in `u` (global), at rest: z = Φᵀ M_SS u_S.
+  void start_modes(const double* u);
+  // Modes: one explicit step of every mode, forced by the interface displacement the last
+  // interface_force() saw (000 eq. 33 with unit modal mass). No allocation.
+  void advance_modes();
   // Stores S_II in single precision and evaluates the interface product in it: half the memory
   // traffic of the dense product that dominates a large interface's substep. S_II's entries keep
   // a relative error of 2^-24 (the product's error stays far below the far field's own).
@@ -115,6 +139,12 @@ class CondensedSecondary {
   Eigen::VectorXd g_s_;                     // gravity on the secondary dofs at full gravity
   SparseCholesky solver_;
   Eigen::VectorXd u_i_, f_i_, rhs_;
+  // Modes (Craig–Bampton): Φ (secondary dofs × m), Ω², L = Φᵀ M Ψ (m × interface dofs), the
+  // interface coupling G = LᵀΩ², the state z now and one step ago, and L u_I of the last
+  // interface_force(); the central-difference coefficients of a unit modal mass.
+  Eigen::MatrixXd phi_, L_, G_;
+  Eigen::VectorXd omega2_, z_, z_before_, Lu_, eta_, z_next_;
+  double cd_A_ = 0, cd_B_ = 1, cd_C_ = 0;
 };
 
 }  // namespace softsim::regions
