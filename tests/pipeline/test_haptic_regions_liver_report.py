@@ -90,3 +90,13 @@ def test_chatter_is_the_largest_frame_to_frame_change_of_the_force():
     flipping = smooth.copy()
     flipping[3, 2] = 0.0
     assert np.isclose(rep.chatter(flipping), 100.0)
+
+
+def test_set_up_words_tell_whether_the_first_answer_waited_for_the_region():
+    import numpy as np
+    from pipeline.reports import haptic_regions_liver as report
+    waited = report.set_up_words(np.array([10.3, 2e-4]), {"build_seconds_max": 10.0})
+    assert "waited" in waited and "10 s" in waited
+    before = report.set_up_words(np.array([1.2e-3, 2e-4]), {"build_seconds_max": 10.0})
+    assert "before the device's clock started" in before and "1.2 ms" in before
+    assert report.set_up_words(np.array([2e-4]), {}) == ""
