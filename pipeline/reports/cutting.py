@@ -126,8 +126,9 @@ def stability_facts(ctx, mesh):
     """Per press_cut run: energy before and after, the step, and the largest |u| at the end."""
     nodes = np.asarray(mesh["nodes"], dtype=float)
     tets = np.asarray(mesh["tets"], dtype=int)
+    before = min_altitude(nodes, tets)
     out = []
-    for run in ctx.runs("press_cut") + ctx.runs("press_cut" + SEPARATE):
+    for stage, run in [(s, r) for s in ("press_cut", "press_cut" + SEPARATE) for r in ctx.runs(s)]:
         p = run.payload
         en = p["energies"]
         t = np.asarray(en["time"])
@@ -137,13 +138,12 @@ def stability_facts(ctx, mesh):
         removed = set(p["removed_elements"])
         left = [e for e in range(len(tets)) if e not in removed]
         alt = min_altitude(nodes, tets[left])
-        mode = "separate" if p.get("node_copies") is not None else "remove"
-        out.append({"label": f"{partition_label(run.config)}, {mode}", "steps": p["solver"]["steps"], "time": p["solver"]["time"],
+        out.append({"label": f"{partition_label(run.config)}, {cut_mode(stage)}", "steps": p["solver"]["steps"], "time": p["solver"]["time"],
                     "peak_after": float(total[after].max()), "final": float(total[-1]),
                     "kinetic_final": float(en["kinetic"][-1]), "dissipated": float(en["dissipated"][-1]),
                     "dt_first": p["solver"]["dt"], "dt_final": p["solver"]["dt_final"],
                     "dt_changes_after_cut": sum(1 for s in p["solver"]["dt_history"] if s[1] > cut_t),
-                    "min_altitude_before": min_altitude(nodes, tets), "min_altitude_after": alt,
+                    "min_altitude_before": before, "min_altitude_after": alt,
                     "max_u": float(np.abs(np.asarray(p["displacement"])).max()), "run": run})
     return out
 

@@ -115,17 +115,23 @@ def forces_plot(ctx, rows, law):
     plots.save(fig, ctx.out("regions_liver_forces.png"))
 
 
-def fine_rows(ctx):
+def fine_runs(ctx, stages):
+    """The refined liver's region runs of `stages`, each with the whole model's payload (stage
+    fine_whole) and its RMS and peak force error against it: (run, whole, rms, peak); none without
+    the whole model's run."""
     whole = runs_of(ctx, "fine_whole")
     if not whole:
         return []
     w = whole[0].payload
     fw = np.array(w["force"])
+    return [(run, w, *errors(np.array(run.payload["force"]), fw)) for s in stages for run in runs_of(ctx, s)]
+
+
+def fine_rows(ctx):
     out = []
-    for run in runs_of(ctx, "fine_condensed") + runs_of(ctx, "fine_guyan"):
+    for run, w, rms, peak in fine_runs(ctx, ("fine_condensed", "fine_guyan")):
         p = run.payload
         reg = p["regions"]
-        rms, peak = errors(np.array(p["force"]), fw)
         frames = reg["frames"] or 1
         out.append({"radius": reg["radius"], "precision": reg.get("precision", "double"),
                     "secondary": reg.get("secondary", "static"), "every": reg["secondary_every"],
@@ -191,7 +197,7 @@ def summary_lines(rows, fine, realtime=()):
                  + "; where it did not restart, its force changed from one frame to the next by up to "
                 + (f"{np.median([r['whole_chatter'] for r in runs if not r['whole_events']]):.2g} % of its peak (median "
                    "over those runs)" if any(not r["whole_events"] for r in runs) else "nothing")
-                + f"; median RMS error of the condensed regions over the runs where neither model restarted: "
+                + "; median RMS error of the condensed regions over the runs where neither model restarted: "
                  + (f"{np.median([r['rms'] for r in runs if clean(r)]):.3g} %" if any(clean(r) for r in runs) else "none")
                  + ".")
     L.append(f"  The rest is at {STABLE_K} N/m.")

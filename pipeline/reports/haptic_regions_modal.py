@@ -7,7 +7,7 @@ import numpy as np
 from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.reports.haptic_regions import errors, runs_of
-from pipeline.reports.haptic_regions_liver import input_label, realtime_line
+from pipeline.reports.haptic_regions_liver import fine_runs, input_label, realtime_line
 from pipeline.tables import write_table
 
 SCENES = ("cube", "liver")
@@ -89,15 +89,9 @@ def forces_plot(ctx, rows):
 def fine_rows(ctx):
     """The refined liver: Guyan against Guyan + modes, each at the far-field recovery it ran with,
     against the whole model's chirp; error and frame time."""
-    whole = runs_of(ctx, "fine_whole")
-    if not whole:
-        return []
-    w = whole[0].payload
-    fw = np.array(w["force"])
     out = []
-    for run in runs_of(ctx, "fine_guyan") + runs_of(ctx, "fine_modal"):
+    for run, w, rms, peak in fine_runs(ctx, ("fine_guyan", "fine_modal")):
         p, reg = run.payload, run.payload["regions"]
-        rms, peak = errors(np.array(p["force"]), fw)
         t = p["timing"]
         out.append({"radius": reg["radius"], "far": far_field(run), "every": reg["secondary_every"],
                     "interface": (reg["primary"] or {}).get("interface_nodes"), "rms": rms, "peak": peak,

@@ -16,6 +16,7 @@
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
 #include "softsim/io/errors.hpp"
+#include "support/cut_scenes.hpp"
 #include "support/fields.hpp"
 #include "support/scenes.hpp"
 
@@ -233,14 +234,7 @@ TEST(Cutting, NothingCutChangesNothingAndAThroughCutLeavesTwoPieces) {
 TEST(Cutting, RunAfterACutStaysStableAndBooksTheRemovedEnergy) {
   const auto m = cuboid(4, 4, 4, 0.04, 0.04, 0.04);
   const auto mesh = std::make_shared<const mesh::TetMesh>(m);
-  const nlohmann::json j = nlohmann::json::parse(R"({
-    "mesh": "m",
-    "material": {"model": "neo_hookean_decoupled", "E": 5000, "nu": 0.35, "density": 1000},
-    "damping": {"alpha": 5},
-    "boundary": {"fixed": ["bottom"], "prescribed": [{"set": "top", "displacement": [0, 0, -0.004], "ramp_time": 0.05}]},
-    "solver": {"kind": "explicit", "steps": 20000, "energy_interval": 500},
-    "cuts": [{"time": 0.06, "from": [[0.021, -0.01, 0.05], [0.021, 0.05, 0.05]], "to": [[0.021, -0.01, 0.02], [0.021, 0.05, 0.02]]}]
-  })");
+  const nlohmann::json j = test_scenes::pressed_block_cut();
   const auto config = hybrid::read_dhd_config(io::JsonReader(j, "config.json"), m);
   hybrid::DhdScene scene(mesh, config, std::vector<ElementKind>(m.num_tets(), ElementKind::tled));
   const double dt0 = scene.dt();

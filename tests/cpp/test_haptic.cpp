@@ -29,12 +29,7 @@ namespace {
 
 using Block = test_scenes::HapticBlock;
 using test_scenes::press_down;
-
-haptic::HapticOptions spring(double stiffness) {
-  haptic::HapticOptions opt;
-  opt.probe_stiffness = stiffness;
-  return opt;
-}
+using test_scenes::spring_probe;
 
 int node_at(const mesh::TetMesh& m, const Eigen::Vector3d& x) {
   for (int i = 0; i < m.num_nodes(); ++i)
@@ -92,7 +87,7 @@ TEST(HapticScene, PressAndHoldSettlesOnTheStaticSpringSolution) {
   // The tip pressed 8 mm straight down over a top node and held: with damping the frames settle
   // where the static solver puts the same spring on that node.
   Block b;
-  const haptic::HapticOptions opt = spring(100);
+  const haptic::HapticOptions opt = spring_probe(100);
   haptic::HapticScene scene(b.mesh, b.config(40), opt);
   const int node = node_at(*b.mesh, {0.05, 0.05, 0.05});
   const Eigen::Vector3d depth(0, 0, -0.008);
@@ -124,7 +119,7 @@ TEST(HapticScene, AFibreReinforcedRelaxingTissueSettlesOnItsRelaxedStaticSolutio
   const nlohmann::json material = {{"model", "transversely_isotropic"}, {"mu", 1850.0}, {"eta", 3000.0},
                                    {"K", 5556.0}, {"fibre", {1.0, 0.0, 0.0}}, {"density", 1000.0},
                                    {"prony", {{"g", {0.5}}, {"tau", {0.05}}}}};
-  const haptic::HapticOptions opt = spring(100);
+  const haptic::HapticOptions opt = spring_probe(100);
   haptic::HapticScene scene(b.mesh, b.config(40, material), opt);
   const int node = node_at(*b.mesh, {0.05, 0.05, 0.05});
   const haptic::HapticRecord r = haptic::run_haptic(scene, press_down(b.mesh->nodes[node], 0.008, 0.3), 3000);
@@ -179,7 +174,7 @@ TEST(HapticScene, ARigidToolAtTheTipSettlesOnTheStaticSolution) {
 
 TEST(HapticScene, SlidingCrossesTrianglesWithoutAForceJump) {
   Block b;
-  haptic::HapticScene scene(b.mesh, b.config(40), spring(100));
+  haptic::HapticScene scene(b.mesh, b.config(40), spring_probe(100));
   haptic::ProbePath path = press_down({0.031, 0.052, 0.05}, 0.005, 0.2);
   path.kind = haptic::ProbePath::Kind::slide;
   path.slide_direction = Eigen::Vector3d::UnitX();
@@ -208,7 +203,7 @@ TEST(HapticScene, SlidingCrossesTrianglesWithoutAForceJump) {
 // the slide, so the tangential force grows, where the frictionless grasp slid with the tip.
 TEST(HapticScene, AnAttachedContactHoldsItsMaterialPointWhileTheTipSlides) {
   Block b;
-  auto options = spring(100);
+  auto options = spring_probe(100);
   options.contact = haptic::ContactMode::attach;
   haptic::HapticScene scene(b.mesh, b.config(40), options);
   haptic::ProbePath path = press_down({0.031, 0.052, 0.05}, 0.005, 0.2);
@@ -233,7 +228,7 @@ TEST(HapticScene, AnAttachedContactHoldsItsMaterialPointWhileTheTipSlides) {
 
 TEST(HapticScene, AFailurePastInversionIsReportedAndTheFramesGoOn) {
   Block b;
-  haptic::HapticScene scene(b.mesh, b.config(10), spring(1e4));
+  haptic::HapticScene scene(b.mesh, b.config(10), spring_probe(1e4));
   const haptic::ProbePath path = press_down({0.05, 0.05, 0.05}, 0.2, 0.2);  // 4x the block's height
   const haptic::HapticRecord r = haptic::run_haptic(scene, path, 400);
   EXPECT_EQ(r.frames, 400);
@@ -247,14 +242,9 @@ TEST(HapticScene, AFailurePastInversionIsReportedAndTheFramesGoOn) {
 // same oriented triangles as extracted from scratch); the frames go on without events.
 TEST(HapticScene, ABladeOnTheToolCutsAndTheSurfaceFollows) {
   Block b;
-  haptic::HapticOptions opt = spring(100);
-  opt.contact = haptic::ContactMode::push;
-  opt.blade = true;
-  opt.blade_edge = Eigen::Vector3d(0, 0, 0.04);  // vertical: 2 cm above and below the tip
-  haptic::HapticScene scene(b.mesh, b.config(40), opt);
+  haptic::HapticScene scene(b.mesh, b.config(40), test_scenes::vertical_blade(hybrid::CutMode::remove));
   const int before = scene.surface().num_triangles();
-  // The tip 1 cm below the top, drawn along x from 3 to 7 cm at y = 5.2 cm.
-  for (long k = 0; k <= 400; ++k) scene.frame(Eigen::Vector3d(0.03 + 0.04 * k / 400.0, 0.052, 0.04));
+  test_scenes::draw_blade_across(scene);
   ASSERT_TRUE(scene.events().empty());
   const auto& cuts = scene.model().cut_events();
   ASSERT_FALSE(cuts.empty());
@@ -266,16 +256,8 @@ TEST(HapticScene, ABladeOnTheToolCutsAndTheSurfaceFollows) {
   left.tets.clear();
   for (int e = 0; e < b.mesh->num_tets(); ++e)
     if (!scene.model().removed(e)) left.tets.push_back(b.mesh->tets[e]);
-  // Oriented triangles, each rotated to start at its smallest node.
-  auto canonical = [](std::array<int, 3> t) {
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    return t;
-  };
-  std::set<std::array<int, 3>> fresh, followed;
-  for (const auto& t : mesh::extract_boundary(left, "cut block")) fresh.insert(canonical(t));
-  for (int t = 0; t < scene.surface().num_triangles(); ++t)
-    if (scene.surface().live(t)) followed.insert(canonical(scene.surface().triangle(t)));
-  EXPECT_EQ(followed, fresh);
+  const auto fresh = test_scenes::oriented_triangle_set(mesh::extract_boundary(left, "cut block"));
+  EXPECT_EQ(test_scenes::surface_triangle_set(scene.surface()), fresh);
   EXPECT_GT(static_cast<int>(fresh.size()), before);
 }
 
@@ -284,31 +266,20 @@ TEST(HapticScene, ABladeOnTheToolCutsAndTheSurfaceFollows) {
 // same oriented triangles as extracted from scratch; the frames go on without events.
 TEST(HapticScene, ASeparatingBladeOpensTheMeshAndTheSurfaceFollows) {
   Block b;
-  haptic::HapticOptions opt = spring(100);
-  opt.contact = haptic::ContactMode::push;
-  opt.blade = true;
-  opt.blade_edge = Eigen::Vector3d(0, 0, 0.04);
-  opt.blade_mode = hybrid::CutMode::separate;
+  const haptic::HapticOptions opt = test_scenes::vertical_blade(hybrid::CutMode::separate);
   hybrid::DhdConfig config = b.config(40);
   EXPECT_THROW(haptic::HapticScene(b.mesh, config, opt), InputError);  // the model must allow it
   config.separates = true;
   haptic::HapticScene scene(b.mesh, config, opt);
   const int before = scene.surface().num_triangles();
-  for (long k = 0; k <= 400; ++k) scene.frame(Eigen::Vector3d(0.03 + 0.04 * k / 400.0, 0.052, 0.04));
+  test_scenes::draw_blade_across(scene);
   ASSERT_TRUE(scene.events().empty());
   ASSERT_FALSE(scene.model().cut_events().empty());
   const mesh::TetMesh& cut = scene.model().mesh();
   EXPECT_GT(cut.num_nodes(), b.mesh->num_nodes());
   for (int e = 0; e < cut.num_tets(); ++e) EXPECT_FALSE(scene.model().removed(e));
-  auto canonical = [](std::array<int, 3> t) {
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    return t;
-  };
-  std::set<std::array<int, 3>> fresh, followed;
-  for (const auto& t : mesh::extract_boundary(cut, "cut block")) fresh.insert(canonical(t));
-  for (int t = 0; t < scene.surface().num_triangles(); ++t)
-    if (scene.surface().live(t)) followed.insert(canonical(scene.surface().triangle(t)));
-  EXPECT_EQ(followed, fresh);
+  const auto fresh = test_scenes::oriented_triangle_set(mesh::extract_boundary(cut, "cut block"));
+  EXPECT_EQ(test_scenes::surface_triangle_set(scene.surface()), fresh);
   EXPECT_GT(static_cast<int>(fresh.size()), before);
   for (int i = 0; i < 3 * cut.num_nodes(); ++i) ASSERT_TRUE(std::isfinite(scene.displacement()[i]));
 }

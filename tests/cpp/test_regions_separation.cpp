@@ -15,16 +15,7 @@ namespace {
 
 using Block = test_scenes::HapticBlock;
 using test_scenes::press_down;
-
-haptic::HapticOptions options(double radius = 0) {
-  haptic::HapticOptions opt;
-  opt.probe_stiffness = 100;
-  if (radius > 0) {
-    opt.use_regions = true;
-    opt.regions.radius = radius;
-  }
-  return opt;
-}
+using test_scenes::spring_probe;
 
 hybrid::DhdConfig separating(const Block& b, double damping) {
   hybrid::DhdConfig c = b.config(damping);
@@ -32,24 +23,14 @@ hybrid::DhdConfig separating(const Block& b, double damping) {
   return c;
 }
 
-// A vertical blade drawn along x at y = y0 between heights z0 and z1.
-cutting::BladeSweep along_x(double x0, double x1, double y0, double z0, double z1) {
-  cutting::BladeSweep s;
-  s.a0 = {x0, y0, z0};
-  s.b0 = {x0, y0, z1};
-  s.a1 = {x1, y0, z0};
-  s.b1 = {x1, y0, z1};
-  return s;
-}
-
 }  // namespace
 
 TEST(RegionsWithSeparation, AtTheFullRateASeparatingCutIsTheWholeModels) {
   Block b;
   const haptic::ProbePath path = press_down({0.05, 0.04, 0.05}, 0.005, 0.2);
-  haptic::HapticScene whole(b.mesh, separating(b, 15), options());
-  haptic::HapticScene all(b.mesh, separating(b, 15), options(1.0));
-  const auto sweep = along_x(0.03, 0.07, 0.056, 0.02, 0.07);
+  haptic::HapticScene whole(b.mesh, separating(b, 15), spring_probe());
+  haptic::HapticScene all(b.mesh, separating(b, 15), spring_probe(100, 1.0));
+  const auto sweep = test_scenes::sweep_along_x(0.03, 0.07, 0.056, 0.02, 0.07);
   std::vector<Eigen::Vector3d> fw, fa;
   for (long k = 0; k < 300; ++k) {
     if (k == 150) {
@@ -78,13 +59,8 @@ TEST(RegionsWithSeparation, AtTheFullRateASeparatingCutIsTheWholeModels) {
 // every node of the cut mesh.
 TEST(RegionsWithSeparation, ASeparatingBladeInASmallerRegionRebuildsItAndGoesOn) {
   Block b;
-  haptic::HapticOptions opt = options(0.03);
-  opt.contact = haptic::ContactMode::push;
-  opt.blade = true;
-  opt.blade_edge = Eigen::Vector3d(0, 0, 0.04);
-  opt.blade_mode = hybrid::CutMode::separate;
-  haptic::HapticScene scene(b.mesh, separating(b, 40), opt);
-  for (long k = 0; k <= 400; ++k) scene.frame(Eigen::Vector3d(0.03 + 0.04 * k / 400.0, 0.052, 0.04));
+  haptic::HapticScene scene(b.mesh, separating(b, 40), test_scenes::vertical_blade(hybrid::CutMode::separate, 0.03));
+  test_scenes::draw_blade_across(scene);
   ASSERT_TRUE(scene.events().empty());
   const int n = scene.model().num_nodes();
   ASSERT_GT(n, b.mesh->num_nodes());

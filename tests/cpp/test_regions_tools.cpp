@@ -54,26 +54,6 @@ haptic::HapticOptions tool_options(double R, double radius = 0) {
   return opt;
 }
 
-haptic::HapticOptions spring_options(double radius = 0) {
-  haptic::HapticOptions opt;
-  opt.probe_stiffness = 100;
-  if (radius > 0) {
-    opt.use_regions = true;
-    opt.regions.radius = radius;
-  }
-  return opt;
-}
-
-// A vertical blade edge swept along x at height z0..z1, y = y0 (rest geometry).
-cutting::BladeSweep sweep_x(double x0, double x1, double y0, double z0, double z1) {
-  cutting::BladeSweep s;
-  s.a0 = {x0, y0, z0};
-  s.b0 = {x0, y0, z1};
-  s.a1 = {x1, y0, z0};
-  s.b1 = {x1, y0, z1};
-  return s;
-}
-
 double largest_difference(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
   double d = 0;
   for (std::size_t k = 0; k < a.size(); ++k) d = std::max(d, (a[k] - b[k]).norm());
@@ -163,10 +143,10 @@ TEST(RegionsWithATool, AContactOutsideThePrimaryIsCountedAndTheRegionTakesItIn) 
 TEST(RegionsWithACut, ACutInsideThePrimaryIsTheWholeModelsCutAtTheFullRate) {
   Block b;
   const haptic::ProbePath path = press_down({0.05, 0.04, 0.05}, 0.005, 0.2);
-  haptic::HapticScene whole(b.mesh, b.config(15), spring_options());
-  haptic::HapticScene all(b.mesh, b.config(15), spring_options(1.0));
+  haptic::HapticScene whole(b.mesh, b.config(15), test_scenes::spring_probe());
+  haptic::HapticScene all(b.mesh, b.config(15), test_scenes::spring_probe(100, 1.0));
   std::vector<Eigen::Vector3d> fw, fa;
-  const auto sweep = sweep_x(0.03, 0.07, 0.056, 0.02, 0.07);
+  const auto sweep = test_scenes::sweep_along_x(0.03, 0.07, 0.056, 0.02, 0.07);
   for (long k = 0; k < 300; ++k) {
     if (k == 150) {
       const auto cw = whole.cut(sweep);
@@ -184,9 +164,9 @@ TEST(RegionsWithACut, ACutInsideThePrimaryIsTheWholeModelsCutAtTheFullRate) {
   EXPECT_EQ(tc.rebuilds, 0);
   EXPECT_LE(largest_difference(fw, fa), 1e-12 * fw.back().norm());
   // The same cut inside a smaller primary region is its engine's local update too.
-  haptic::HapticScene part(b.mesh, b.config(15), spring_options(0.03));
+  haptic::HapticScene part(b.mesh, b.config(15), test_scenes::spring_probe(100, 0.03));
   for (long k = 0; k < 150; ++k) part.frame(path.at(k * 1e-3));
-  part.cut(sweep_x(0.045, 0.055, 0.046, 0.035, 0.07));
+  part.cut(test_scenes::sweep_along_x(0.045, 0.055, 0.046, 0.035, 0.07));
   EXPECT_EQ(part.regions()->topology_stats().local_updates, 1);
   EXPECT_EQ(part.regions()->topology_stats().rebuilds, 0);
 }
@@ -197,10 +177,10 @@ TEST(RegionsWithACut, ACutInsideThePrimaryIsTheWholeModelsCutAtTheFullRate) {
 TEST(RegionsWithACut, ACutReachingTheSecondaryRebuildsItAndTheSettledForceIsTheWholeCutModels) {
   Block b;
   const haptic::ProbePath path = press_down(kTop, 0.006, 0.2);
-  const auto sweep = sweep_x(0.005, 0.04, 0.012, 0.01, 0.07);  // near a corner, far from the tip
-  haptic::HapticScene whole(b.mesh, b.config(40, "linear"), spring_options());
+  const auto sweep = test_scenes::sweep_along_x(0.005, 0.04, 0.012, 0.01, 0.07);  // near a corner, far from the tip
+  haptic::HapticScene whole(b.mesh, b.config(40, "linear"), test_scenes::spring_probe());
   whole.cut(sweep);
-  haptic::HapticScene regions(b.mesh, b.config(40, "linear"), spring_options(0.03));
+  haptic::HapticScene regions(b.mesh, b.config(40, "linear"), test_scenes::spring_probe(100, 0.03));
   regions.prepare(path.at(0));
   const auto ev = regions.cut(sweep);
   ASSERT_FALSE(ev.report.elements.empty());
@@ -219,7 +199,7 @@ TEST(RegionsWithACut, ACutReachingTheSecondaryRebuildsItAndTheSettledForceIsTheW
   EXPECT_LT((rr.force.back() - expected).norm(), 1e-6 * expected.norm())
       << rr.force.back().transpose() << " vs " << expected.transpose();
   // 001 eq. 7's exchange is rebuilt the same way and settles on the same force.
-  auto exchange = spring_options(0.03);
+  auto exchange = test_scenes::spring_probe(100, 0.03);
   exchange.regions.coupling = regions::Coupling::exchange;
   exchange.regions.secondary_every = 5;
   exchange.regions.interpolate = false;
@@ -241,7 +221,7 @@ TEST(RegionsWithACut, TheCondensedInterfaceOfACutMeshIsTheWholeCutLinearModel) {
   const mesh::TetMesh& m = *b.mesh;
   const auto config = b.config(0, "linear");
   std::vector<char> removed(m.num_tets(), 0);
-  const auto crossed = cutting::elements_crossed(m, nullptr, sweep_x(0.005, 0.04, 0.012, 0.01, 0.07));
+  const auto crossed = cutting::elements_crossed(m, nullptr, test_scenes::sweep_along_x(0.005, 0.04, 0.012, 0.01, 0.07));
   ASSERT_GT(crossed.size(), 4u);
   for (int e : crossed) removed[e] = 1;
   const int n = m.num_nodes();

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <random>
 
+#include "softsim/cutting/live_mesh.hpp"
 #include "softsim/cutting/pieces.hpp"
 #include "softsim/cutting/separation.hpp"
 #include "softsim/dynamics/explicit_solver.hpp"
@@ -17,6 +18,7 @@
 #include "softsim/hybrid/dhd_config.hpp"
 #include "softsim/hybrid/dhd_scene.hpp"
 #include "softsim/io/errors.hpp"
+#include "support/cut_scenes.hpp"
 #include "support/fields.hpp"
 #include "support/scenes.hpp"
 
@@ -310,15 +312,7 @@ TEST(Separation, NothingOpenedChangesNothingAndAThroughCutFallsFree) {
 TEST(Separation, RunAfterACutUnderLoadStaysStableAndRemovesNoEnergy) {
   const auto m = cuboid(4, 4, 4, 0.04, 0.04, 0.04);
   const auto mesh = std::make_shared<const mesh::TetMesh>(m);
-  const nlohmann::json j = nlohmann::json::parse(R"({
-    "mesh": "m",
-    "material": {"model": "neo_hookean_decoupled", "E": 5000, "nu": 0.35, "density": 1000},
-    "damping": {"alpha": 5},
-    "boundary": {"fixed": ["bottom"], "prescribed": [{"set": "top", "displacement": [0, 0, -0.004], "ramp_time": 0.05}]},
-    "solver": {"kind": "explicit", "steps": 20000, "energy_interval": 500},
-    "cuts": [{"time": 0.06, "from": [[0.021, -0.01, 0.05], [0.021, 0.05, 0.05]], "to": [[0.021, -0.01, 0.02], [0.021, 0.05, 0.02]],
-              "mode": "separate"}]
-  })");
+  const nlohmann::json j = test_scenes::pressed_block_cut("separate");
   const auto config = hybrid::read_dhd_config(io::JsonReader(j, "config.json"), m);
   EXPECT_TRUE(config.separates);
   hybrid::DhdScene scene(mesh, config, std::vector<ElementKind>(m.num_tets(), ElementKind::tled));
@@ -362,12 +356,9 @@ TEST(Separation, APowerIterationStepIsMeasuredAgainAfterACut) {
     scene.run();
     ASSERT_EQ(scene.cut_events().size(), 1u) << mode;
     const auto& ev = scene.cut_events()[0];
-    mesh::TetMesh live = scene.mesh();
-    live.tets.clear();
-    for (int e = 0; e < scene.mesh().num_tets(); ++e)
-      if (!scene.removed(e)) live.tets.push_back(scene.mesh().tets[e]);
-    const std::vector<ElementKind> live_kinds(live.tets.size(), ElementKind::tled);
-    const double fresh = dynamics::power_iteration_step(live, live_kinds, scene.config().material, scene.config().scene).dt;
+    const auto live = cutting::live_mesh(scene.mesh(), kinds, [&](int e) { return scene.removed(e); });
+    const double fresh =
+        dynamics::power_iteration_step(live.mesh, live.kinds, scene.config().material, scene.config().scene).dt;
     EXPECT_NEAR(ev.stable_step, fresh, 1e-12 * fresh) << mode;
     EXPECT_LT(ev.stable_step, before) << mode;  // here the cut raised ω_max
     EXPECT_LE(scene.dt(), ev.stable_step * (1 + 1e-12)) << mode;  // the step followed at once
@@ -393,15 +384,8 @@ TEST(Separation, ASeparatingRunIsBitIdenticalForAnyThreadCount) {
   const auto m = cuboid(4, 4, 4, 0.04, 0.04, 0.04);
   const auto mesh = std::make_shared<const mesh::TetMesh>(m);
   const auto run = [&](int threads) {
-    nlohmann::json j = nlohmann::json::parse(R"({
-      "mesh": "m",
-      "material": {"model": "neo_hookean_decoupled", "E": 5000, "nu": 0.35, "density": 1000},
-      "damping": {"alpha": 5},
-      "boundary": {"fixed": ["bottom"], "prescribed": [{"set": "top", "displacement": [0, 0, -0.004], "ramp_time": 0.05}]},
-      "solver": {"kind": "explicit", "steps": 800, "energy_interval": 200},
-      "cuts": [{"time": 0.06, "from": [[0.021, -0.01, 0.05], [0.021, 0.05, 0.05]], "to": [[0.021, -0.01, 0.02], [0.021, 0.05, 0.02]],
-                "mode": "separate"}]
-    })");
+    nlohmann::json j = test_scenes::pressed_block_cut("separate", 800);
+    j["solver"]["energy_interval"] = 200;
     j["threads"] = threads;
     hybrid::DhdScene scene(mesh, hybrid::read_dhd_config(io::JsonReader(j, "config.json"), m), mixed_kinds(m.num_tets()));
     const auto r = scene.run();

@@ -54,8 +54,10 @@ int FaceTopology::face_towards(int e, int other) const {
 
 void FaceTopology::open_face(int a, int b) {
   const int fa = face_towards(a, b), fb = face_towards(b, a);
-  if (fa >= 0) neighbour_[4 * static_cast<std::size_t>(a) + fa] = -1;
-  if (fb >= 0) neighbour_[4 * static_cast<std::size_t>(b) + fb] = -1;
+  if (fa < 0 || fb < 0) return;
+  neighbour_[4 * static_cast<std::size_t>(a) + fa] = -1;
+  neighbour_[4 * static_cast<std::size_t>(b) + fb] = -1;
+  pending_.push_back({a, fa, b, fb});
 }
 
 void FaceTopology::move_to_copy(int node, int copy, const std::vector<int>& elements) {
@@ -67,16 +69,25 @@ void FaceTopology::move_to_copy(int node, int copy, const std::vector<int>& elem
   std::sort(to.begin(), to.end());
 }
 
-int shared_face(const mesh::TetMesh& mesh, int e, int other) {
-  for (int f = 0; f < 4; ++f) {
-    bool all = true;
-    for (int k = 0; k < 3 && all; ++k) {
-      const int node = mesh.tets[e][kFaceCorners[f][k]];
-      all = std::find(mesh.tets[other].begin(), mesh.tets[other].end(), node) != mesh.tets[other].end();
+std::vector<std::array<int, 2>> FaceTopology::take_separated(const mesh::TetMesh& mesh) {
+  const auto nodes = [&](int e, int f) {
+    std::array<int, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = mesh.tets[e][kFaceCorners[f][k]];
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::vector<std::array<int, 2>> sides;
+  std::size_t kept = 0;
+  for (const auto& p : pending_) {
+    if (nodes(p[0], p[1]) == nodes(p[2], p[3])) {
+      pending_[kept++] = p;
+      continue;
     }
-    if (all) return f;
+    sides.push_back({p[0], p[1]});
+    sides.push_back({p[2], p[3]});
   }
-  return -1;
+  pending_.resize(kept);
+  return sides;
 }
 
 }  // namespace softsim::cutting

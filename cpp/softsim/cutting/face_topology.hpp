@@ -30,59 +30,21 @@ class FaceTopology {
   int boundary_triangle(int e, int f) const { return boundary_triangle_[4 * static_cast<std::size_t>(e) + f]; }
   void set_boundary_triangle(int e, int f, int triangle) { boundary_triangle_[4 * static_cast<std::size_t>(e) + f] = triangle; }
 
-  // A cut opened the face between a and b: neither is the other's neighbour any more.
+  // A cut opened the face between a and b: neither is the other's neighbour any more. Its two
+  // sides stay pending while they share all three nodes (the cut's front), until a split
+  // separates them.
   void open_face(int a, int b);
   // `copy` (a new node, numbered after every existing one) takes over `node` in `elements`.
   void move_to_copy(int node, int copy, const std::vector<int>& elements);
-  // Opened faces whose sides still share all three nodes (the cut's front): kept until a split
-  // separates them. take_separated calls face(e, f) for both sides of each one that no longer
-  // shares all three (e's local face f) and forgets it.
-  void add_pending(int a, int b) { pending_.push_back({a, b}); }
-  template <class Face>
-  void take_separated(const mesh::TetMesh& mesh, Face face);
-  int num_pending() const { return static_cast<int>(pending_.size()); }
+  // The sides (element, local face) of the pending faces whose two sides no longer share all
+  // three nodes, both sides of each; they are pending no more.
+  std::vector<std::array<int, 2>> take_separated(const mesh::TetMesh& mesh);
 
  private:
   std::vector<int> neighbour_;                 // 4 per element
   std::vector<int> boundary_triangle_;         // 4 per element
   std::vector<std::vector<int>> elements_at_;  // per node
-  std::vector<std::array<int, 2>> pending_;
+  std::vector<std::array<int, 4>> pending_;    // opened faces still joined: (a, face of a, b, face of b)
 };
-
-// The local face of `e` holding the three nodes it shares with `other` (−1: they share fewer).
-int shared_face(const mesh::TetMesh& mesh, int e, int other);
-
-template <class Face>
-void FaceTopology::take_separated(const mesh::TetMesh& mesh, Face face) {
-  std::size_t kept = 0;
-  for (const auto& p : pending_) {
-    const int fa = shared_face(mesh, p[0], p[1]);
-    if (fa >= 0) {
-      pending_[kept++] = p;
-      continue;
-    }
-    // Each side's face is the one opposite the corner that is not a copy of the other's nodes:
-    // found through the reference positions, which a copy shares with its original.
-    for (const int e : p) {
-      const int other = e == p[0] ? p[1] : p[0];
-      for (int f = 0; f < 4; ++f) {
-        int matched = 0;
-        for (int k = 0; k < 3; ++k) {
-          const auto& x = mesh.nodes[mesh.tets[e][kFaceCorners[f][k]]];
-          for (int node : mesh.tets[other])
-            if (mesh.nodes[node] == x) {
-              ++matched;
-              break;
-            }
-        }
-        if (matched == 3) {
-          face(e, f);
-          break;
-        }
-      }
-    }
-  }
-  pending_.resize(kept);
-}
 
 }  // namespace softsim::cutting

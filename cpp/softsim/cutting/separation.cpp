@@ -147,15 +147,12 @@ BoundaryChange apply_separation(mesh::TetMesh& mesh, FaceTopology& topology, con
   // A cut face opens in the topology at once; its two sides join the boundary once they no
   // longer share all three nodes (a face whose nodes all lie on the cut's front waits for a
   // later cut to split one of them).
-  for (const auto& [a, b] : plan.faces) {
-    topology.open_face(a, b);
-    topology.add_pending(a, b);
-  }
+  for (const auto& [a, b] : plan.faces) topology.open_face(a, b);
   change.first_new = static_cast<int>(mesh.boundary.size());
-  topology.take_separated(mesh, [&](int e, int f) {
+  for (const auto& [e, f] : topology.take_separated(mesh)) {
     topology.set_boundary_triangle(e, f, static_cast<int>(mesh.boundary.size()));
     mesh.boundary.push_back(face_triangle(e, f));
-  });
+  }
   std::sort(change.rewritten.begin(), change.rewritten.end());
   change.rewritten.erase(std::unique(change.rewritten.begin(), change.rewritten.end()), change.rewritten.end());
   return change;

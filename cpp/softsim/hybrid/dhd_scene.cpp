@@ -4,6 +4,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "softsim/cutting/live_mesh.hpp"
 #include "softsim/cutting/pieces.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/io/errors.hpp"
@@ -168,15 +169,8 @@ DhdScene::CutEvent DhdScene::cut(const cutting::BladeSweep& sweep, CutMode mode,
 // one that does is a numerical failure naming the cut.
 void DhdScene::recheck_spectral_step(CutEvent& ev) {
   const auto t0 = std::chrono::steady_clock::now();
-  mesh::TetMesh live;
-  live.nodes = mesh_->nodes;
-  std::vector<fem::ElementKind> kinds;
-  for (int e = 0; e < mesh_->num_tets(); ++e)
-    if (!elements_->removed(e)) {
-      live.tets.push_back(mesh_->tets[e]);
-      kinds.push_back(kinds_[e]);
-    }
-  spectral_ = dynamics::power_iteration_step(live, kinds, config_.material, config_.scene);
+  const cutting::LiveMesh live = cutting::live_mesh(*mesh_, kinds_, [&](int e) { return elements_->removed(e); });
+  spectral_ = dynamics::power_iteration_step(live.mesh, live.kinds, config_.material, config_.scene);
   spectral_scale_ = spectral_->dt / critical_.dt;
   ev.stable_step = spectral_->dt;
   ev.step_check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -206,7 +200,7 @@ DhdScene::CutEvent DhdScene::separate(const cutting::BladeSweep& sweep, CutEvent
   const auto t0 = Clock::now();
   if (!topology_) topology_ = std::make_unique<cutting::FaceTopology>(*mesh_);
   const auto removed = [&](int e) { return elements_->removed(e); };
-  const auto held = [&](int node) { return node < static_cast<int>(held_.size()) && held_[node] != 0; };
+  const auto held = [&](int node) { return held_[node] != 0; };  // held_ covers every node (resized below)
   const cutting::SeparationPlan plan =
       cutting::plan_separation(*mesh_, u, sweep, crossed, *topology_, removed, held);
   ev.faces = static_cast<int>(plan.faces.size());

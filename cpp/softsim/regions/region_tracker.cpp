@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "softsim/cutting/live_mesh.hpp"
 #include "softsim/cutting/pieces.hpp"
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/io/errors.hpp"
@@ -58,11 +59,8 @@ void RegionTracker::update_linear() {
   const int n = mesh_->num_nodes();
   // The mesh a cut left: its lumped masses, and its nodes without elements held (they carry no
   // stiffness; a quasi-static secondary would be singular there).
-  mesh::TetMesh left;
-  left.nodes = mesh_->nodes;
-  for (int e = 0; e < mesh_->num_tets(); ++e)
-    if (!removed_[e]) left.tets.push_back(mesh_->tets[e]);
-  masses_ = dynamics::lumped_mass(left, model_.material.elastic.density);
+  const cutting::LiveMesh left = cutting::live_mesh(*mesh_, kinds_, [&](int e) { return removed_[e] != 0; });
+  masses_ = dynamics::lumped_mass(left.mesh, model_.material.elastic.density);
   std::vector<char> constrained = dynamics::constrained_mask(dynamics::resolve_constraints(model_.scene, n), n);
   for (int i = 0; i < n; ++i)
     if (masses_[i] == 0) constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
@@ -234,7 +232,9 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
   for (int e : change.removed) removed_[e] = 1;
   linear_stale_ = true;  // regions built from now on see the cut mesh
   const bool removal_only = change.changed.empty() && change.copies.empty();
-  const std::size_t n3_before = rest_.size();  // a separation adds nodes: the state grows below
+  // A separation adds node copies: the state grows to the cut mesh's nodes.
+  const std::size_t n3_before = rest_.size();
+  rest_.resize(3 * static_cast<std::size_t>(mesh_->num_nodes()), 0.0);
   for (auto it = built_.begin(); it != built_.end();) {
     RegionSolver* r = it->second.solver.get();
     if (removal_only && !r->secondary_affected(change.removed)) {
@@ -261,7 +261,6 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     std::vector<double> u_before = u;
     active_->primary_previous(u_before.data());
     // Each node copy starts from its node's state (a separation keeps every velocity).
-    rest_.resize(3 * static_cast<std::size_t>(mesh_->num_nodes()), 0.0);
     u.resize(rest_.size(), 0.0);
     u_before.resize(rest_.size(), 0.0);
     for (const auto& [node, copy] : change.copies)
@@ -290,7 +289,6 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     topology_.linear_seconds += linear_seconds;
     ++it;
   }
-  rest_.resize(3 * static_cast<std::size_t>(mesh_->num_nodes()), 0.0);  // with no region active too
 }
 
 void RegionTracker::frame(const std::vector<dynamics::AppliedForce>& forces) {
