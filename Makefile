@@ -1,4 +1,5 @@
-# The doors a user knows: setup · build · test · reproduce · bench · clean.
+# The doors a user knows: setup · build · demo · test · reproduce · bench · clean
+# (README.md says what each does and how long it takes on a small machine).
 PYTHON ?= /usr/bin/python3
 BUILD  ?= build
 JOBS   ?= $(shell nproc)
@@ -7,7 +8,8 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 # PIPELINE_FLAGS="--scheduler tcp://HOST:8786 -j 256" (a later -j wins over JOBS)
 PIPELINE_FLAGS ?=
 
-.PHONY: all setup configure build test reproduce bench fuzz test-sanitize clean
+.PHONY: all setup configure build python-link python-unlink demo test test-ci test-all reproduce reproduce-quick report \
+        bench fuzz test-sanitize clean
 
 all: build
 
@@ -19,13 +21,59 @@ configure: setup
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
+	@$(MAKE) --no-print-directory python-link
 
+# `import softsim` for Debian's python3 from anywhere: a one-line softsim.pth in the user's
+# site-packages naming $(BUILD)/python (what an editable install does, without pip, which Debian's
+# python3 does not let install here). The build tree stays the one copy: a rebuild is imported at
+# once. PYTHON_LINK=0 skips it; `make python-unlink` removes it.
+PYTHON_LINK ?= 1
+python-link:
+	@if [ "$(PYTHON_LINK)" = 1 ] && [ -d $(BUILD)/python/softsim ]; then \
+	  site=$$($(PYTHON) -m site --user-site) && mkdir -p "$$site" && \
+	  realpath $(BUILD)/python > "$$site/softsim.pth" && \
+	  echo "python: import softsim works in $(PYTHON) ($$site/softsim.pth -> $$(realpath $(BUILD)/python))"; \
+	fi
+python-unlink:
+	@rm -f "$$($(PYTHON) -m site --user-site)/softsim.pth"
+
+# A first result in about a minute: the complete C++ stepping example (cpp/examples/step_scene.cpp,
+# a probe pressed 2 mm into the cuboid at 1 kHz frames) writes its force against depth, and the
+# mesh experiment tabulates the meshes of the papers.
+demo: build
+	@mkdir -p $(BUILD)/demo
+	@$(BUILD)/examples/step_scene $(BUILD)/demo/press.csv
+	@echo "demo: force on the tool against tip depth, one line per 1 ms frame: $(BUILD)/demo/press.csv"
+	@tail -n 3 $(BUILD)/demo/press.csv
+
+# Tests. `make test` is the quick suite (a few minutes on two cores); the checks labelled slow
+# (ctest label `slow`, pytest marker `slow`) run in `make test-all`; CI runs `make test-ci`, the
+# quick suite and the slow pytest checks (everything but recompiling the library as a consumer's
+# subdirectory, which alone takes about ten minutes on two cores).
+CTEST = cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 test: build
-	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	@$(CTEST) -LE slow
+	@$(PYTHON) -m pytest -q -m "not slow" tests/pipeline
+
+test-ci: test
+	@$(PYTHON) -m pytest -q -m slow tests/pipeline; rc=$$?; [ $$rc -eq 0 ] || [ $$rc -eq 5 ]
+
+test-all: build
+	@$(CTEST)
 	@$(PYTHON) -m pytest -q tests/pipeline
 
 reproduce: build
 	@$(PYTHON) -m pipeline run all -j $(JOBS) $(PIPELINE_FLAGS)
+
+# The experiments behind the three papers' tables and figures (pipeline/cli.py, PAPERS), at full
+# size, without the haptic, cutting, contact, stability and benchmark studies that take most of
+# the full run's time; REPORT.md then says that only part of the experiments were rerun.
+reproduce-quick: build
+	@$(PYTHON) -m pipeline run papers -j $(JOBS) $(PIPELINE_FLAGS)
+
+# REPORT.md assembled again from the summaries in results/, nothing rerun.
+report:
+	@$(PYTHON) -m pipeline report
 
 bench: build
 	@$(PYTHON) -m pipeline bench

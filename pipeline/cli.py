@@ -1,10 +1,12 @@
 """Command line of the pipeline:
-  run EXPERIMENT|all [--stage NAME] [--force] [-j N] [--executor local|dask-local | --scheduler ADDRESS]
+  run EXPERIMENT|papers|all [--stage NAME] [--force] [-j N] [--executor local|dask-local | --scheduler ADDRESS]
       [--timings FILE]
   list
+  report
+  diff [--against REF] [--restore]
   clean [--results | --stale]
   bench [--filter REGEX]
-Exit codes: 0 ok, 1 a run failed, 2 a malformed experiment or command line."""
+Exit codes: 0 ok, 1 a run failed (diff: real changes found), 2 a malformed experiment or command line."""
 import argparse
 import shutil
 import sys
@@ -14,6 +16,22 @@ from pipeline import experiment as experiment_mod
 from pipeline import report_md
 from pipeline.errors import ExperimentError
 from pipeline.paths import CACHE, RESULTS
+
+# `pipeline run papers` (make reproduce-quick): the experiments behind the three papers' tables
+# and figures, with the meshes and the independent solver they are checked against; without the
+# haptic scene, cutting, contact, stability and benchmark studies, which take most of the hour.
+PAPERS = ["meshes", "dhd_table1", "dhd_table2", "dhd_partition", "dhd_pareto", "dhd_fig9", "dhd_liver",
+          "validation_calculix", "rpim_datasets", "rpim_fit", "rpim_stiffness", "rpim_liver",
+          "async_table", "async_inputs", "async_adaptive", "async_solvers"]
+
+
+def _experiment_names(which: str) -> list:
+    if which == "all":
+        return experiment_mod.list_experiments()
+    if which == "papers":
+        known = set(experiment_mod.list_experiments())
+        return [n for n in PAPERS if n in known]
+    return [which]
 
 
 def _progress_echo(bar):
@@ -71,9 +89,9 @@ def cmd_run(args) -> int:
     from pipeline.executors import make_executor
     from pipeline.runner import Runner, write_manifest
 
-    names = experiment_mod.list_experiments() if args.experiment == "all" else [args.experiment]
-    if args.stage and args.experiment == "all":
-        raise ExperimentError("command line: --stage needs one experiment, not all")
+    names = _experiment_names(args.experiment)
+    if args.stage and args.experiment in ("all", "papers"):
+        raise ExperimentError(f"command line: --stage needs one experiment, not {args.experiment}")
     experiments = [experiment_mod.load(n) for n in names]
     selected = [(exp, experiment_mod.refresh(exp, args.stage) if args.stage else list(exp.runs))
                 for exp in experiments]
@@ -95,8 +113,10 @@ def cmd_run(args) -> int:
         ready = time.time()
         ok = True
         with progress_bar(sum(len(run_ids) for _, run_ids in selected + followers)) as bar:
+            echo = _progress_echo(bar)
+            executor.echo = echo  # what the cluster did (a lost worker) goes where the runs' lines go
             runner = Runner(force=args.force, force_stages=[(args.experiment, args.stage)] if args.stage else [],
-                            echo=_progress_echo(bar), progress=bar, executor=executor)
+                            echo=echo, progress=bar, executor=executor)
             ok = runner.run_all(selected)
             if followers:
                 ok = runner.run_all(followers) and ok
@@ -169,6 +189,24 @@ def cmd_clean(args) -> int:
     return 0
 
 
+def cmd_report(_args) -> int:
+    """REPORT.md assembled again from the summaries in results/ (nothing runs)."""
+    report_md.assemble()
+    print(f"pipeline: wrote {RESULTS / 'REPORT.md'}")
+    return 0
+
+
+def cmd_diff(args) -> int:
+    from pipeline import results_diff
+    found = results_diff.classify(args.against)
+    print(results_diff.report(found, args.against))
+    if args.restore:
+        restored = results_diff.restore(found, args.against)
+        print(f"pipeline: restored {len(restored)} file{'s' if len(restored) != 1 else ''} whose only changes "
+              f"were timings or bookkeeping; git status now shows the real changes")
+    return 1 if found["real"] else 0
+
+
 def cmd_bench(args) -> int:
     from pipeline.bench import run_benchmarks
     status = run_benchmarks(args.filter)
@@ -180,7 +218,8 @@ def main(argv) -> int:
     parser = argparse.ArgumentParser(prog="pipeline", description="Run the papers' experiments.")
     sub = parser.add_subparsers(dest="command", required=True)
     p_run = sub.add_parser("run", help="run an experiment (or all)")
-    p_run.add_argument("experiment", help="an experiment name (experiments/NAME.json) or all")
+    p_run.add_argument("experiment", help="an experiment name (experiments/NAME.json), papers (the experiments "
+                                          "behind the papers' tables) or all")
     p_run.add_argument("--stage", help="rerun this stage (its dependencies come from the cache, or run first) and "
                                        "refresh what depends on it: the reports built on it, here and in the "
                                        "experiments that include it by ref")
@@ -200,6 +239,14 @@ def main(argv) -> int:
     p_run.set_defaults(func=cmd_run)
     p_list = sub.add_parser("list", help="list the experiments and their stages")
     p_list.set_defaults(func=cmd_list)
+    p_report = sub.add_parser("report", help="assemble results/REPORT.md again from results/ (runs nothing)")
+    p_report.set_defaults(func=cmd_report)
+    p_diff = sub.add_parser("diff", help="compare results/ with the committed results: real changes apart "
+                                         "from timing noise (exit 1 when there are real changes)")
+    p_diff.add_argument("--against", default="HEAD", metavar="REF", help="the git revision to compare with")
+    p_diff.add_argument("--restore", action="store_true",
+                        help="check out again the files whose only changes are timings")
+    p_diff.set_defaults(func=cmd_diff)
     p_clean = sub.add_parser("clean", help="remove the run cache")
     p_clean.add_argument("--results", action="store_true", help="also remove results/")
     p_clean.add_argument("--stale", action="store_true",

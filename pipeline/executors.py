@@ -9,6 +9,7 @@ filesystem); `DaskExecutor.check_workers` proves it at start-up, each run checks
 again on its worker, and runs are published into the cache atomically (pipeline.cache)."""
 import logging
 import os
+import threading
 import uuid
 from pathlib import Path
 from typing import Dict, Iterable, Tuple
@@ -103,6 +104,15 @@ class DaskExecutor:
         except TimeoutError:
             self.close()
             raise ClusterMismatch(f"the Dask scheduler {self.address} has no worker after {wait_s:.0f} s") from None
+        # A worker lost mid-run: the scheduler moves its runs to the other workers by itself; the
+        # pipeline says so on the console when it happens and in each moved run's log once it
+        # has run again (its log is rewritten by the new worker, so the note is added after).
+        self._lost: Dict[str, str] = {}      # task key -> the lost worker that was running it
+        self._specs: Dict[str, RunSpec] = {}
+        self._noted = set()
+        self._lock = threading.Lock()
+        self._closing = False
+        self.client.subscribe_topic("all", self._on_event)
         workers_info = self.client.scheduler_info()["workers"]
         self.name = "dask-local" if self.cluster is not None else "dask"
         self.slots = jobs or sum(w.get("nthreads", 1) for w in workers_info.values())
@@ -145,14 +155,50 @@ class DaskExecutor:
             raise ClusterMismatch("refusing the Dask cluster, its workers must share the client's repository, "
                                   "build and cache (a shared filesystem, the same build):\n  " + "\n  ".join(problems))
 
+    def _on_event(self, event) -> None:
+        """The scheduler's event stream: a removed worker that was running runs."""
+        _, msg = event
+        if not isinstance(msg, dict) or msg.get("action") != "remove-worker" or self._closing:
+            return
+        keys = sorted(str(k) for k in msg.get("processing-tasks", ()))
+        worker = msg.get("worker", "?")
+        with self._lock:
+            for key in keys:
+                self._lost[key] = worker
+        runs = ", ".join(_run_of_key(k) for k in keys) or "no run"
+        self.echo(f"pipeline: lost Dask worker {worker} while it ran {runs}"
+                  + ("; resubmitted to the other workers" if keys else ""))
+
+    def _note_resubmitted(self, key: str, result: RunResult = None) -> None:
+        """Adds to a resubmitted run's log that its first worker was lost (once)."""
+        with self._lock:
+            if key not in self._lost or key in self._noted or key not in self._specs:
+                return
+            self._noted.add(key)
+            worker, spec = self._lost[key], self._specs[key]
+        where = f" and ran again on {result.host} (pid {result.pid})" if result is not None else ""
+        line = f"pipeline: worker {worker} was lost while running this; the run was resubmitted{where}"
+        try:
+            with open(spec.log, "a") as log:
+                log.write(line + "\n")
+        except OSError:
+            pass
+        if result is not None:
+            self.echo(f"pipeline: {spec.experiment} {spec.run_id}: resubmitted after worker {worker} was lost, "
+                      f"ran again on {result.host} (pid {result.pid})")
+
     def execute(self, spec: RunSpec, exclusive: bool = False) -> RunResult:
         if exclusive and not self.exclusive_remote:
             # No worker offers the `exclusive` resource: timings stay on this machine, alone.
             return run_spec(spec, check_code=False)
-        future = self.client.submit(
-            run_spec, spec, key=f"{spec.experiment}.{spec.run_id}-{uuid.uuid4().hex[:8]}", pure=False,
-            retries=RETRIES, resources={EXCLUSIVE: 1} if exclusive else None)
-        return future.result()
+        key = f"{spec.experiment}.{spec.run_id}-{uuid.uuid4().hex[:8]}"
+        with self._lock:
+            self._specs[key] = spec
+        future = self.client.submit(run_spec, spec, key=key, pure=False, retries=RETRIES,
+                                    resources={EXCLUSIVE: 1} if exclusive else None)
+        result = future.result()
+        self._note_resubmitted(key, result)
+        return result
 
     def clean_stale(self) -> Tuple[int, int]:
         count, size = cache.clean_stale()
@@ -164,6 +210,10 @@ class DaskExecutor:
         return count, size
 
     def close(self) -> None:
+        # A loss reported after its run came back: noted in the run's log now.
+        for key in list(self._lost):
+            self._note_resubmitted(key)
+        self._closing = True
         try:
             self.client.run(cache.release_staging_dir)
         except Exception:  # a worker gone meanwhile: its folder is stale, cleaned next time
@@ -172,6 +222,13 @@ class DaskExecutor:
         self.client.close()
         if self.cluster is not None:
             self.cluster.close()
+
+
+def _run_of_key(key: str) -> str:
+    """'experiment run' of a task key 'experiment.run-xxxxxxxx' (DaskExecutor.execute)."""
+    name = key.rsplit("-", 1)[0]
+    experiment, _, run = name.partition(".")
+    return f"{experiment} {run}" if run else name
 
 
 def make_executor(kind: str, scheduler: str = None, jobs: int = None, echo=print):

@@ -25,3 +25,10 @@ foreach(mode ${consumer_modes})
                    -P ${PROJECT_SOURCE_DIR}/tests/consumer/run_consumer.cmake)
   set_tests_properties(consumer_${mode} PROPERTIES TIMEOUT 900)
 endforeach()
+# The subdirectory build compiles the library's core and fe groups a second time, with the
+# consumer's flags (about ten minutes on an idle two-core machine, most of the whole ctest run):
+# a slow check, run by `make test-all` and CI, not by `make test`. The package mode reuses this
+# build (install, one source file) and stays in the quick suite.
+if(TEST consumer_subdirectory)
+  set_tests_properties(consumer_subdirectory PROPERTIES LABELS slow)
+endif()

@@ -14,6 +14,11 @@ if not BIN.is_absolute():
 sys.path.insert(0, str(ROOT))
 
 
+def pytest_configure(config):
+    config.addinivalue_line("markers", "slow: a check of a minute or more (real clusters, long sweeps); "
+                                       "`make test` leaves it out, `make test-ci` and `make test-all` run it")
+
+
 def tool(name: str) -> Path:
     path = BIN / name
     if not path.exists():

@@ -96,6 +96,13 @@ def test_worker_killed_mid_run_is_retried_and_results_are_identical(tmp_path):
     stdout, stderr, meshers = signal_in_flight(proc, "mesher", signal.SIGKILL, lambda _, pids: parent_of(pids[0]))
     assert proc.returncode == 0, stdout + stderr
     assert "pipeline: 3 ran" in stdout, stdout
+    # The console says which worker was lost with which run, and that the run ran again ...
+    lost = [line for line in stdout.splitlines() if line.startswith("pipeline: lost Dask worker")]
+    assert len(lost) == 1 and "while it ran t cube#" in lost[0] and "resubmitted" in lost[0], stdout
+    moved = lost[0].split("while it ran t ")[1].split(";")[0]
+    # ... and so does that run's log, written by the worker that ran it again.
+    log = Path(dask["PIPELINE_CACHE"]) / "logs" / f"t.{moved.replace('#', '.')}.log"
+    assert "was lost while running this; the run was resubmitted" in log.read_text(), log.read_text()
     # The killed worker's tool died with it (no orphan writing into the cache) ...
     assert wait_until(lambda: gone(meshers[0]), timeout=10)
     # ... nothing half-written stays, and the results equal a clean local run.
