@@ -3,13 +3,14 @@ import json
 import re
 from pipeline.artifacts import git_commit, write_text_atomic
 from pipeline.paths import RESULTS
+from pipeline.report_summary import summary_table
 
 ORDER = ["mesh", "dhd", "validation", "rpim", "rpim_stiffness", "rpim_liver", "async", "haptic", "cutting", "contact",
          "stability", "bench"]
 
 
 def provenance(manifest: dict, commit: str) -> str:
-    """The opening sentence of REPORT.md: which command last wrote results (from the manifest the
+    """The provenance paragraph closing REPORT.md: which command last wrote results (from the manifest the
     pipeline keeps), and, unless that was a complete `make reproduce`, that other sections come
     from earlier runs, with the commit each experiment was last run at."""
     command = manifest.get("command")
@@ -31,6 +32,8 @@ def provenance(manifest: dict, commit: str) -> str:
 
 
 def assemble() -> None:
+    """REPORT.md: the summary table of the headline results against the papers, a contents list,
+    every area's summaries in reading order, and at the end which runs wrote them."""
     manifest = {}
     path = RESULTS / "manifest.json"
     if path.exists():
@@ -38,20 +41,64 @@ def assemble() -> None:
             manifest = json.loads(path.read_text())
         except json.JSONDecodeError:
             manifest = {}
-    parts = ["# Results\n",
-             provenance(manifest, git_commit()) + " Every number below was measured by this project's code; "
-             "a paper's number appears only beside ours and is labelled as the paper's. Each section links "
-             "to its tables and plots.\n"]
     subdirs = sorted((p for p in RESULTS.iterdir() if p.is_dir()),
                      key=lambda p: (ORDER.index(p.name) if p.name in ORDER else len(ORDER), p.name)) \
         if RESULTS.exists() else []
+    sections = []
     for d in subdirs:
         # An area's summary.md first, then any <part>_summary.md of reports sharing the folder.
         summaries = ([d / "summary.md"] if (d / "summary.md").exists() else []) + \
             sorted(d.glob("*_summary.md"))
         for summary in summaries:
-            parts.append(_relink(summary.read_text().strip(), d) + "\n")
+            sections.append(_relink(summary.read_text().strip(), d) + "\n")
+    parts = ["# Results\n",
+             "Every number below was measured by this project's code; a paper's number appears only beside ours "
+             "and is labelled as the paper's. Each section links to its tables and plots; how the results were "
+             "produced is at the end ([Provenance](#provenance)).\n"]
+    table = summary_table()
+    if table:
+        parts.append("## Summary: the headline results against the papers\n\n"
+                     "Read from the result tables each row links (our numbers as measured, the paper's as it states "
+                     "them, in its sign convention); the sections below explain every difference.\n\n" + table)
+    parts.append(contents(sections))
+    parts.extend(sections)
+    parts.append("## Provenance\n\n" + provenance(manifest, git_commit()) + "\n")
     write_text_atomic(RESULTS / "REPORT.md", "\n".join(parts))
+
+
+HEADING = re.compile(r"^(#{1,2}) (.+?)\s*$")
+
+
+def slug(heading: str) -> str:
+    """The anchor a Markdown viewer (GitHub's rule) gives a heading: lower case, punctuation
+    dropped, spaces as hyphens."""
+    text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", heading).lower()
+    return re.sub(r"[^\w\- ]", "", text).replace(" ", "-")
+
+
+def contents(sections) -> str:
+    """The contents list: every top-level and second-level heading of the sections, linked; the
+    second-level headings under a top-level one (an area with parts) indented below it."""
+    lines, seen, under_top = ["## Contents\n"], {}, False
+    for text in sections:
+        in_code = False
+        for line in text.splitlines():
+            if line.startswith("```"):
+                in_code = not in_code
+            m = None if in_code else HEADING.match(line)
+            if not m:
+                continue
+            title = m.group(2)
+            anchor = slug(title)
+            n = seen.get(anchor, 0)
+            seen[anchor] = n + 1
+            anchor = anchor if n == 0 else f"{anchor}-{n}"
+            shown = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", title)
+            under_top = under_top or len(m.group(1)) == 1
+            indent = "  " if under_top and len(m.group(1)) == 2 else ""
+            lines.append(f"{indent}- [{shown}](#{anchor})")
+    lines.append("- [Provenance](#provenance)")
+    return "\n".join(lines) + "\n"
 
 
 def read_parts(folder, names) -> list:
