@@ -17,6 +17,8 @@ from conftest import ROOT, run_pipeline, tool
 from procs_util import gone, parent_of, signal_in_flight, wait_until
 
 pytest.importorskip("distributed")
+# Each starts a real cluster (10-20 s apiece): run by `make test-ci` and `make test-all`.
+pytestmark = pytest.mark.slow
 
 SMALL = {"results": "mesh", "stages": {
     "cube": {"tool": "mesher", "config": {"source": {"kind": "cuboid", "cells": [1, 1, 1], "size": [0.01, 0.01, 0.01]}},

@@ -23,6 +23,7 @@ def test_recipe_is_valid_bash():
     assert r.returncode == 0, r.stderr
 
 
+@pytest.mark.slow  # a real scheduler and workers, about 13 s
 def test_recipe_runs_an_experiment_on_its_cluster(pipeline_env, tmp_path):
     pytest.importorskip("distributed")
     tool("mesher")
