@@ -3,7 +3,12 @@
 PYTHON ?= /usr/bin/python3
 BUILD  ?= build
 JOBS   ?= $(shell nproc)
-CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+# ccache, where installed, makes a rebuild take seconds; paths relative to this folder let
+# another clone on the same machine (CI's) reuse the objects.
+CCACHE := $(shell command -v ccache 2>/dev/null)
+CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release \
+  $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR ?= $(CURDIR)
 # Extra flags of `pipeline run` for reproduce, e.g. PIPELINE_FLAGS="--executor dask-local" or
 # PIPELINE_FLAGS="--scheduler tcp://HOST:8786 -j 256" (a later -j wins over JOBS)
 PIPELINE_FLAGS ?=
