@@ -138,6 +138,10 @@ def cmd_run(args) -> int:
     for o in runner.outcomes.values():
         counts[o.status] = counts.get(o.status, 0) + 1
     print("pipeline: " + ", ".join(f"{n} {s}" for s, n in sorted(counts.items())), flush=True)
+    from pipeline.results_diff import one_line
+    changes = one_line()
+    if changes:
+        print(f"pipeline: {changes}", flush=True)
     return 0 if ok else 1
 
 

@@ -183,6 +183,21 @@ def report(found: Dict[str, list], ref: str) -> str:
     return "\n".join(lines)
 
 
+def one_line(ref: str = "HEAD") -> str:
+    """After a run: how results/ now differs from the committed results, in one line ("" when
+    results/ is not a tracked folder of this repository, or git cannot tell)."""
+    try:
+        RESULTS.resolve().relative_to(ROOT.resolve())
+        found = classify(ref)
+    except (ValueError, OSError, subprocess.CalledProcessError):
+        return ""
+    if not any(found.values()):
+        return "results/ as committed"
+    return (f"results/ against {ref}: {len(found['real'])} files with real changes, {len(found['timing'])} with "
+            f"timings alone, {len(found['new'])} new, {len(found['not compared'])} not compared "
+            "(`pipeline diff` lists them; `pipeline diff --restore` keeps only the real changes)")
+
+
 def restore(found: Dict[str, list], ref: str) -> List[str]:
     """Checks out again the files whose changes are timings or bookkeeping alone."""
     paths = [p for p, _ in found["timing"]] + found["unchanged"]
