@@ -108,3 +108,16 @@ def test_diff_tells_timings_from_real_changes():
     # Which commit ran what is bookkeeping, not a change of results.
     line = "table1 by `dhd_table1` at commit `ac904c2-dirty`.\n"
     assert results_diff.compare_text(".md", line, line.replace("ac904c2", "0123abc")) == (0, {})
+
+
+def test_papers_selection_holds_every_experiment_behind_a_papers_table():
+    """`pipeline run papers` (make reproduce-quick) names shipped experiments only, and every
+    experiment that writes into a paper's results folder is among them."""
+    from pipeline import cli
+    from pipeline import experiment as experiment_mod
+    shipped = set(experiment_mod.list_experiments())
+    assert set(cli.PAPERS) <= shipped, set(cli.PAPERS) - shipped
+    paper_folders = {"mesh", "dhd", "rpim", "rpim_stiffness", "rpim_liver", "async"}
+    behind = {n for n in shipped if experiment_mod.load(n).results_subdir in paper_folders}
+    assert behind <= set(cli.PAPERS), behind - set(cli.PAPERS)
+    assert cli._experiment_names("papers") == cli.PAPERS
