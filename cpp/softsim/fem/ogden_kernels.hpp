@@ -6,8 +6,8 @@
 //
 //  1. q = tr C / 3, B = C − q I, p = |B|/√6, r = det(B/p)/2 ∈ [−1, 1]: the eigenvalues are
 //     q + p β with β³ − 3β = 2r. The root farthest from the other two (β ≥ √3 for r ≥ 0, its
-//     mirror for r < 0) is found by six Newton steps from β = ±2, monotone and quadratic there
-//     (f' ≥ 6); being well separated it is accurate to round-off, unlike the two others, which
+//     mirror for r < 0) is found by two Newton steps from a quartic fit of it in |r|,
+//     quadratic there (f' ≥ 6); being well separated it is accurate to round-off, unlike the two others, which
 //     the trigonometric formula gives only to √eps when they nearly coincide.
 //  2. Its eigenvector N: the largest cross product of two rows of C − c_s I, normalised.
 //  3. The other two in N's orthogonal plane without a basis of it: E = C − m I − (c_s − m) N Nᵀ
@@ -17,7 +17,8 @@
 //     g = (s₊ − s₋)/(2h), the divided difference; its cancellation error eps/h meets E of size h,
 //     so S stays accurate at repeated and nearly repeated stretches. Degenerate cases: h = 0
 //     gives g = 0 (E = 0 then), and C = q I (p = 0: no row to cross, any N serves) takes N = e₁.
-//  5. λ̄_i^α = (J^(−2/3) c_i)^(α/2) by a vectorisable pow (vector_pow.hpp).
+//  5. λ̄_i^α = exp(α/2 ln(J^(−2/3) c_i)) by a vectorisable log and exp (vector_pow.hpp), the
+//     logarithms once for all terms.
 // P = F S_iso + p cof F with p = K (J − 1) (TLED) or the mean of the corners' nodal pressures
 // (ANP). An inverted element (J ≤ 0) gets zero forces.
 #include "softsim/fem/element_kernels.hpp"
