@@ -5,7 +5,9 @@
 
 #include <Eigen/Core>
 
+#include "softsim/fem/invariant_kernels.hpp"
 #include "softsim/fem/kernel_macros.hpp"
+#include "softsim/fem/ogden_kernels.hpp"
 #include "softsim/fem/stable_kernels.hpp"
 
 namespace softsim::fem::kernels {
@@ -98,6 +100,42 @@ struct Overloaded : Fs... {
 template <class... Fs>
 Overloaded(Fs...) -> Overloaded<Fs...>;
 
+// The invariant form (invariant_kernels.hpp) of an elastic law, if it has one.
+bool invariant_form(const material::ElasticLaw& law, InvariantLaw& out) {
+  if (const auto* nh = std::get_if<material::NeoHookean>(&law)) {
+    if (nh->form != material::NeoHookeanForm::decoupled) return false;
+    out.m1 = nh->mu, out.bulk = nh->bulk;
+    return true;
+  }
+  if (const auto* mr = std::get_if<material::MooneyRivlin>(&law)) {
+    out.m1 = 2.0 * mr->c10, out.m2 = 2.0 * mr->c01, out.bulk = mr->bulk, out.has_c01 = mr->c01 != 0.0;
+    return true;
+  }
+  if (const auto* ti = std::get_if<material::TransverselyIsotropic>(&law)) {
+    out.m1 = ti->mu, out.eta = ti->eta, out.bulk = ti->bulk, out.has_fibre = true;
+    for (int c = 0; c < 3; ++c) out.fibre[c] = ti->fibre[c];
+    return true;
+  }
+  return false;
+}
+
+// A Prony series on a base with an invariant form: the fused kernel; else the generic one.
+template <bool kAveraged>
+void viscoelastic_forces(const material::Viscoelastic& v, const SoaView s, const double* __restrict u, int begin,
+                         int end, const double* __restrict pressure, double* __restrict scratch, double& min_j,
+                         const LawData& data) {
+  InvariantLaw law;
+  if (!invariant_form(v.base, law)) {
+    element_data_kernel<material::Viscoelastic, kAveraged>(s, u, begin, end, v, pressure, data, min_j);
+    return;
+  }
+  const material::PronyStep step = material::prony_step(v, data.dt);
+  PronyTerms prony;
+  prony.terms = v.terms;
+  for (int i = 0; i < v.terms; ++i) prony.decay[i] = step.decay[i], prony.weight[i] = step.weight[i];
+  invariant_forces(law, prony, s, u, begin, end, pressure, data, scratch, min_j);
+}
+
 }  // namespace
 
 void tled_forces(const material::HyperelasticLaw& law, const SoaView s, const double* __restrict u, int begin,
@@ -109,12 +147,19 @@ void tled_forces(const material::HyperelasticLaw& law, const SoaView s, const do
                             tled_decoupled_kernel(s, u, begin, end, nh.mu, nh.bulk, scratch, min_j);
                         },
                         [&](const material::StableNeoHookean& sn) { tled_stable_kernel(s, u, begin, end, sn); },
+                        [&](const material::MooneyRivlin& mr) {
+                          InvariantLaw l;
+                          invariant_form(mr, l);
+                          invariant_forces(l, {}, s, u, begin, end, nullptr, data, scratch, min_j);
+                        },
+                        [&](const material::Ogden& og) { ogden_forces(og, s, u, begin, end, nullptr, scratch, min_j); },
                         [&](const material::TransverselyIsotropic& ti) {
-                          element_data_kernel<material::TransverselyIsotropic, false>(s, u, begin, end, ti, nullptr,
-                                                                                      data, min_j);
+                          InvariantLaw l;
+                          invariant_form(ti, l);
+                          invariant_forces(l, {}, s, u, begin, end, nullptr, data, scratch, min_j);
                         },
                         [&](const material::Viscoelastic& v) {
-                          element_data_kernel<material::Viscoelastic, false>(s, u, begin, end, v, nullptr, data, min_j);
+                          viscoelastic_forces<false>(v, s, u, begin, end, nullptr, scratch, min_j, data);
                         },
                         [&](const auto& other) {
                           using Law = std::decay_t<decltype(other)>;
@@ -133,12 +178,19 @@ void anp_forces(const material::HyperelasticLaw& isochoric, const SoaView s, con
                             anp_decoupled_kernel(s, u, begin, end, nh.mu, pressure, scratch, min_j);
                         },
                         [&](const material::StableNeoHookean& sn) { anp_stable_kernel(s, u, begin, end, sn, pressure); },
+                        [&](const material::MooneyRivlin& mr) {
+                          InvariantLaw l;
+                          invariant_form(mr, l);
+                          invariant_forces(l, {}, s, u, begin, end, pressure, data, scratch, min_j);
+                        },
+                        [&](const material::Ogden& og) { ogden_forces(og, s, u, begin, end, pressure, scratch, min_j); },
                         [&](const material::TransverselyIsotropic& ti) {
-                          element_data_kernel<material::TransverselyIsotropic, true>(s, u, begin, end, ti, pressure,
-                                                                                     data, min_j);
+                          InvariantLaw l;
+                          invariant_form(ti, l);
+                          invariant_forces(l, {}, s, u, begin, end, pressure, data, scratch, min_j);
                         },
                         [&](const material::Viscoelastic& v) {
-                          element_data_kernel<material::Viscoelastic, true>(s, u, begin, end, v, pressure, data, min_j);
+                          viscoelastic_forces<true>(v, s, u, begin, end, pressure, scratch, min_j, data);
                         },
                         [&](const auto& other) {
                           using Law = std::decay_t<decltype(other)>;
