@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdlib>
 #include <cstdio>
@@ -103,6 +104,10 @@ const char* g_tool_name = "softsim";
 // not in run_app's handlers: out of memory there would be SIGABRT. This handler gives it the
 // same end as everywhere else: one line, the run's files removed, exit 1.
 [[noreturn]] void on_terminate() {
+  // Every thread of a parallel region may get here: the first one speaks and ends the process.
+  static std::atomic_flag taken = ATOMIC_FLAG_INIT;
+  if (taken.test_and_set())
+    for (;;) ::pause();
   const char* what = "an unknown failure";
   bool out_of_memory = false;
   if (const std::exception_ptr e = std::current_exception()) {
