@@ -5,6 +5,8 @@
 //   serve: the real-time loop a device bridge drives, over stdin/stdout or UDP on loopback
 // Both write a "haptic_result" artifact: forces, probe positions, contact, frame times, events.
 // Config reference: cpp/apps/haptic_sim.md.
+#include <unistd.h>
+
 #include <iostream>
 #include <memory>
 
@@ -25,6 +27,7 @@ int main(int argc, char** argv) {
       "  {\"model\": {a dhd_sim config with an explicit solver and no probe},\n"
       "   \"frame_rate\": 1000 Hz, \"frames\": 1000 (run),\n"
       "   \"probe\": {\"stiffness\": N/m, \"contact\": \"grasp\"|\"attach\"|\"push\"} | {\"contact\": \"tool\", \"tool_offset\": [x,y,z]},\n"
+      "            + \"max_force\": 20 N, \"max_force_step\": 2 N per frame, \"max_distance\": 1 m (what the device may be sent),\n"
       "   \"input\": {\"kind\": \"press\", \"start\": [x,y,z], \"direction\": [x,y,z], \"depth\": m, \"ramp_time\": s}\n"
       "            | {\"kind\": \"slide\", ... as press, \"slide_direction\": [x,y,z], \"speed\": m/s}\n"
       "            | {\"kind\": \"growing_sine\", \"start\", \"direction\", \"amplitude\": m, \"frequency\": Hz, \"growth_time\": s}\n"
@@ -34,7 +37,7 @@ int main(int argc, char** argv) {
       "               \"secondary\": \"static\"|\"implicit\"|\"guyan\", \"modes\": 0 (guyan),\n"
       "               \"precision\": \"double\"|\"single\", \"skip_below\": 0 m,\n"
       "               \"tool_margin\": m (contact tool), \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
-      "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s, \"announce\": false,\n"
+      "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s, \"announce\": true,\n"
       "                 \"visual\": {\"path\": FILE, \"every\": 33}}}   (serve)\n"
       "  Full reference: cpp/apps/haptic_sim.md";
   return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
@@ -42,6 +45,9 @@ int main(int argc, char** argv) {
     const std::string mesh_path = ctx.input(haptic::read_haptic_mesh_path(cfg));
     auto mesh = std::make_shared<const mesh::TetMesh>(io::read_mesh_artifact(mesh_path));
     const haptic::HapticConfig config = haptic::read_haptic_config(cfg, *mesh);
+    ctx.stream_output(config.realtime.visual.path, "/realtime/visual/path");
+    haptic::ForceLimiter limiter(config.safety);
+    const haptic::Workspace workspace(*mesh, config.safety.max_distance);
     if (!config.recorded_path.empty()) ctx.input(config.recorded_path);
     for (const auto& tool : config.model.scene.tools)
       if (tool.surface) ctx.input(tool.surface->source());
@@ -56,16 +62,20 @@ int main(int argc, char** argv) {
       if (config.options.use_regions) scene.prepare(config.input.at(0));
       std::unique_ptr<haptic::VisualStream> visual;
       if (!rt.visual.path.empty()) visual = std::make_unique<haptic::VisualStream>(*mesh, rt.visual);
+      const haptic::ServeOptions options{rt.max_frames, rt.idle_timeout, &limiter, &workspace, visual.get()};
+      haptic::ServedSession served;
       if (rt.source == haptic::RealtimeConfig::Source::udp) {
-        record = haptic::serve_udp(
-            scene, rt.port, rt.max_frames, rt.idle_timeout,
-            [](int port) { std::cerr << "haptic_sim: listening on udp 127.0.0.1:" << port << std::endl; }, visual.get());
+        served = haptic::serve_udp(scene, rt.port, options, [](int port) {
+          std::cerr << "haptic_sim: listening on udp 127.0.0.1:" << port << std::endl;
+        });
       } else {
         if (rt.announce) std::cerr << "haptic_sim: ready" << std::endl;
-        record = haptic::serve_lines(scene, std::cin, std::cout, rt.max_frames, visual.get());
+        served = haptic::serve_lines(scene, STDIN_FILENO, STDOUT_FILENO, options);
       }
+      record = std::move(served.record);
+      ctx.exit_code = served.exit_code;
     } else {
-      record = haptic::run_haptic(scene, config.input, config.frames);
+      record = haptic::run_haptic(scene, config.input, config.frames, &limiter, &workspace);
     }
     ctx.write(haptic::kHapticSchema, haptic::kHapticSchemaVersion, haptic::haptic_payload(config, scene, record, ctx.mode));
     const auto ft = haptic::summarize_frame_times(record.compute_seconds, config.options.frame_step);

@@ -1,6 +1,13 @@
 #include "common/app.hpp"
 
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
 #include <cstdio>
+#include <cstring>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -59,11 +66,14 @@ bool same_output(const std::string& a, const std::string& b) {
 // another string member of the config (an input: the failure would delete the user's file, and
 // success overwrite it). `own` is the member naming the output itself.
 std::string output_conflict(const AppContext& ctx, const std::string& path, const std::string& label,
-                            const std::string& own) {
+                            const std::string& own, bool stream = false) {
   if (!ctx.config_path.empty() && same_file(ctx.config_path, path))
     return label + ": expected a file other than the --config file";
   try {
-    io::check_output_path(path, label);
+    if (stream)
+      io::check_stream_path(path, label);
+    else
+      io::check_output_path(path, label);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -85,11 +95,50 @@ std::string out_path_conflict(const AppContext& ctx) {
 // run's artifact at --out, which this run never replaced (the artifact is written last, by one
 // rename) and which stays as it was; the exit code, not the file's presence, says whether this
 // run succeeded.
-void remove_failed_output() {
-  for (const std::string& written : io::written_files()) std::remove(written.c_str());
+void remove_failed_output() { io::undo_written(); }
+
+// The tool's name for the last-resort handler below.
+const char* g_tool_name = "softsim";
+
+// An exception that leaves an OpenMP region (or any noexcept frame) ends in std::terminate,
+// not in run_app's handlers: out of memory there would be SIGABRT. This handler gives it the
+// same end as everywhere else: one line, the run's files removed, exit 1.
+[[noreturn]] void on_terminate() {
+  // Every thread of a parallel region may get here: the first one speaks and ends the process.
+  static std::atomic_flag taken = ATOMIC_FLAG_INIT;
+  if (taken.test_and_set())
+    for (;;) ::pause();
+  const char* what = "an unknown failure";
+  bool out_of_memory = false;
+  if (const std::exception_ptr e = std::current_exception()) {
+    try {
+      std::rethrow_exception(e);
+    } catch (const std::bad_alloc&) {
+      out_of_memory = true;
+    } catch (const std::exception& x) {
+      what = x.what();
+    } catch (...) {
+    }
+  }
+  std::fprintf(stderr, "%s: internal error: %s\n", g_tool_name,
+               out_of_memory ? "out of memory (the run's memory estimate passed the limit: lower "
+                               "SOFTSIM_MEMORY_LIMIT_MB to what this machine can give)"
+                             : what);
+  remove_failed_output();
+  std::_Exit(1);
 }
 
 }  // namespace
+
+std::string AppContext::stream_output(const std::string& path, const std::string& pointer) const {
+  if (path.empty()) return path;
+  if (same_output(path, out_path))
+    throw InputError(config_path + ": " + pointer + ": expected a file other than the --out file " + out_path);
+  if (const std::string conflict = output_conflict(*this, path, config_path + ": " + pointer, pointer, true);
+      !conflict.empty())
+    throw InputError(conflict);
+  return path;
+}
 
 std::string AppContext::output(const std::string& path, const std::string& pointer) const {
   if (path.empty()) return path;
@@ -105,6 +154,10 @@ int run_app(int argc, char** argv, const AppInfo& info,
   AppContext ctx;
   ctx.provenance.tool = info.name;
   io::reset_output_guard();
+  g_tool_name = info.name.c_str();
+  std::set_terminate(on_terminate);
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     std::vector<std::string> args(argv + 1, argv + argc);
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -147,7 +200,8 @@ int run_app(int argc, char** argv, const AppInfo& info,
     if (!ctx.out_path.empty())
       if (const std::string conflict = out_path_conflict(ctx); !conflict.empty()) throw InputError(conflict);
     body(ctx);
-    return 0;
+    io::commit_written();
+    return ctx.exit_code;
   } catch (const InputError& e) {
     std::cerr << info.name << ": error: ";
     // A config member found at fault after reading knows its JSON pointer but not the file.

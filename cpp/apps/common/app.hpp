@@ -3,7 +3,11 @@
 //   TOOL [MODE] --config FILE --out FILE [--flag ...]   run
 //   TOOL --help | --version
 // Exit codes: 0 success, 2 bad input (one line naming file, JSON pointer, expectation),
-// 3 numerical failure (no artifact written), 1 internal error.
+// 3 numerical failure (no artifact written), 1 internal error (out of memory included, in an
+// OpenMP region too: one line, the run's files removed). A tool may finish with another code
+// and its artifact written (AppContext::exit_code: haptic_sim serve's 4 and 5).
+// SIGPIPE and SIGXFSZ are ignored: a write to a reader that left, or past the file-size limit,
+// fails with an error the tool reports instead of killing it.
 #include <functional>
 #include <map>
 #include <set>
@@ -46,6 +50,11 @@ class AppContext {
   // before anything is computed: the rules of --out (a regular file or a new name, not the
   // config, not a file another member names, not --out itself). Returns `path` ("" passes).
   std::string output(const std::string& path, const std::string& pointer) const;
+  // The rules of output() for a file written in place as the run goes, which may also be a
+  // named pipe (haptic_sim's visual stream).
+  std::string stream_output(const std::string& path, const std::string& pointer) const;
+  // The exit code of a run that finished (its artifact written): 0 unless the tool says why not.
+  int exit_code = 0;
   // Writes the artifact at --out with this run's provenance.
   void write(const std::string& schema, int version, nlohmann::json payload);
 

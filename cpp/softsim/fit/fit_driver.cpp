@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <tuple>
 
@@ -209,6 +210,12 @@ FitResult fit_surface_model(const std::array<const Dataset*, 3>& datasets, const
     const std::vector<double> delta = loaded_displacements(*ds, d);
     const AffineScale force_scale = input_scale(force, opt.scale_inputs);
     const std::string what1 = name(d, -1, "relation 1 (loaded-node displacement)");
+    // Forces that take one value (all zero, all the same) say nothing of how the displacement
+    // depends on the force: whatever order CV chose, playback would give every force that one
+    // displacement. The fixed-order path finds the same as an ill-conditioned design.
+    if (std::adjacent_find(force.begin(), force.end(), std::not_equal_to<>()) == force.end())
+      throw NumericalError(what1 + ": ill_conditioned: every case has the force " + std::to_string(force.front()) +
+                           " N: expected at least two different forces");
     CvTable force_table;
     force_table.relation = Relation::force_to_loaded;
     force_table.direction = d;

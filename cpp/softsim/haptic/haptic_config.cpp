@@ -4,12 +4,26 @@
 #include <string>
 
 #include "softsim/io/errors.hpp"
+#include "softsim/io/limits.hpp"
 
 namespace softsim::haptic {
 
 namespace {
 
 using hybrid::read_vec3;
+
+// Bytes a frame takes in the record and in the artifact's JSON (time, probe, force, contact,
+// frame time as values and as text).
+constexpr double kBytesPerRecordedFrame = 400;
+
+void read_safety(const io::JsonReader& probe, DeviceSafetyConfig& s) {
+  s.max_force = probe.get_positive("max_force", s.max_force);
+  probe.require(std::isfinite(s.max_force), "max_force", "a finite force limit (N)");
+  s.max_force_step = probe.get_positive("max_force_step", s.max_force_step);
+  probe.require(std::isfinite(s.max_force_step), "max_force_step", "a finite change of force per frame (N)");
+  s.max_distance = probe.get_positive("max_distance", s.max_distance);
+  probe.require(std::isfinite(s.max_distance), "max_distance", "a finite distance from the organ (m)");
+}
 
 Eigen::Vector3d read_unit(const io::JsonReader& r, const std::string& key) {
   const Eigen::Vector3d v = read_vec3(r, key);
@@ -67,8 +81,11 @@ void read_realtime(const io::JsonReader& r, RealtimeConfig& rt) {
   rt.port = r.get_int32("port", 0);
   r.require(rt.port >= 0 && rt.port <= 65535, "port", "a port number in [0, 65535] (0: any free port)");
   rt.max_frames = r.get_int("max_frames", 0);
-  r.require(rt.max_frames >= 0, "max_frames", "a frame count >= 0 (0: until the input ends)");
-  rt.idle_timeout = r.get_positive("idle_timeout", rt.idle_timeout);
+  r.require(rt.max_frames >= 0 && rt.max_frames <= 100000000, "max_frames",
+            "a frame count in [0, 10^8] (0: until the session ends)");
+  io::require_memory(r, "max_frames", kBytesPerRecordedFrame * static_cast<double>(rt.max_frames), "the served frames' record");
+  rt.idle_timeout = r.get_double("idle_timeout", rt.idle_timeout);
+  r.require(rt.idle_timeout >= 1e-3 && rt.idle_timeout <= 86400, "idle_timeout", "a time in [0.001, 86400] s");
   rt.announce = r.get_bool("announce", rt.announce);
   if (const auto v = r.optional("visual")) {
     rt.visual.path = v->get_string("path");
@@ -106,6 +123,7 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
   } else {
     c.options.probe_stiffness = probe.get_positive("stiffness");
   }
+  read_safety(probe, c.safety);
   probe.reject_unknown();
   if (const auto blade = cfg.optional("blade")) {
     c.options.blade = true;
@@ -177,6 +195,7 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
   read_input(cfg.at("input"), mesh, c);
   c.frames = cfg.get_int("frames", c.frames);
   cfg.require(c.frames >= 1 && c.frames <= 100000000, "frames", "a frame count in [1, 10^8]");
+  io::require_memory(cfg, "frames", kBytesPerRecordedFrame * static_cast<double>(c.frames), "the frames' record");
   if (const auto rt = cfg.optional("realtime")) read_realtime(*rt, c.realtime);
   cfg.reject_unknown();
   return c;

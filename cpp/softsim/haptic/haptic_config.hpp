@@ -5,6 +5,7 @@
 // the file and JSON pointer.
 #include <string>
 
+#include "softsim/haptic/device_safety.hpp"
 #include "softsim/haptic/haptic_scene.hpp"
 #include "softsim/haptic/probe_path.hpp"
 #include "softsim/haptic/visual_stream.hpp"
@@ -18,8 +19,8 @@ struct RealtimeConfig {
   Source source = Source::stdin_lines;
   int port = 0;          // udp: the loopback port to listen on (0: any free port, printed)
   long max_frames = 0;   // 0: until the input ends
-  double idle_timeout = 5.0;  // udp: s without a datagram before the client counts as gone
-  bool announce = false;      // stdin: "haptic_sim: ready" on stderr once set up (udp announces its port)
+  double idle_timeout = 5.0;  // udp: s without a datagram before the client counts as gone, [1e-3, 86400]
+  bool announce = true;       // stdin: "haptic_sim: ready" on stderr once set up (udp announces its port)
   VisualConfig visual;        // the deformed surface at a lower rate (visual_stream.hpp)
 };
 
@@ -30,6 +31,7 @@ struct HapticConfig {
   std::string recorded_path;  // input.kind "recorded": the file read
   long frames = 1000;         // run mode
   RealtimeConfig realtime;
+  DeviceSafetyConfig safety;  // probe.max_force, max_force_step, max_distance
 };
 
 // The model's mesh path (the mesh must be loaded before the rest can be read).

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+
+#include "softsim/io/errors.hpp"
 
 namespace softsim::haptic {
 
@@ -37,7 +40,8 @@ FrameTimeSummary summarize_frame_times(const std::vector<double>& seconds, doubl
   return s;
 }
 
-HapticRecord run_haptic(HapticScene& scene, const ProbePath& path, long frames) {
+HapticRecord run_haptic(HapticScene& scene, const ProbePath& path, long frames, ForceLimiter* limiter,
+                        const Workspace* workspace) {
   using Clock = std::chrono::steady_clock;
   HapticRecord r;
   r.reserve(frames);
@@ -46,11 +50,19 @@ HapticRecord run_haptic(HapticScene& scene, const ProbePath& path, long frames) 
   for (long k = 0; k < frames; ++k) {
     // The tip position of frame k is read at its start (001 §3, step 1).
     const Eigen::Vector3d p = path.at(k * h);
+    if (workspace && !workspace->contains(p)) {
+      char what[160];
+      std::snprintf(what, sizeof what, "input at %.9g s: expected a tip position within %.3g m of the organ's bounding box, got one %.3g m away",
+                    k * h, workspace->reach(), workspace->distance(p));
+      throw InputError(what);
+    }
     const auto t0 = Clock::now();
-    const Eigen::Vector3d f = scene.frame(p);
+    Eigen::Vector3d f = scene.frame(p);
+    if (limiter) f = limiter->limit(k + 1, f);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     r.push((k + 1) * h, p, f, scene.in_contact(), seconds);
   }
+  if (limiter) r.reports["device_safety"] = limiter->payload();
   return r;
 }
 
@@ -144,7 +156,7 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
   double mean_seconds = 0;
   for (double x : record.compute_seconds) mean_seconds += x;
   if (!record.compute_seconds.empty()) mean_seconds /= double(record.compute_seconds.size());
-  return {
+  nlohmann::json payload = {
       {"mode", mode},
       {"solver", scene.options().use_regions ? "regions" : "whole_model"},
       {"regions", regions_payload(scene)},
@@ -171,6 +183,8 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
       {"timing", {{"frame_seconds_mean", mean_seconds}, {"frame_seconds_p50", ft.p50}, {"frame_seconds_p99", ft.p99}, {"frame_seconds_max", ft.max},
                   {"deadline_misses", ft.deadline_misses}, {"threads", config.model.threads}}},
   };
+  for (auto it = record.reports.begin(); it != record.reports.end(); ++it) payload[it.key()] = *it;
+  return payload;
 }
 
 }  // namespace softsim::haptic

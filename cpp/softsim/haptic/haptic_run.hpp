@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "softsim/haptic/device_safety.hpp"
 #include "softsim/haptic/haptic_config.hpp"
 #include "softsim/haptic/haptic_scene.hpp"
 
@@ -23,6 +24,8 @@ struct HapticRecord {
   std::vector<char> contact;              // in contact after the frame
   std::vector<double> compute_seconds;    // wall time of the frame's computation
   long frames = 0;
+  // Members added to the artifact's payload as they are ("device_safety", "session").
+  nlohmann::json reports = nlohmann::json::object();
   void reserve(long n);
   void push(double t, const Eigen::Vector3d& p, const Eigen::Vector3d& f, bool in_contact, double seconds);
 };
@@ -35,8 +38,11 @@ struct FrameTimeSummary {
 };
 FrameTimeSummary summarize_frame_times(const std::vector<double>& seconds, double frame_step);
 
-// `frames` frames of the input path from the scene's current state.
-HapticRecord run_haptic(HapticScene& scene, const ProbePath& path, long frames);
+// `frames` frames of the input path from the scene's current state. With `limiter`, each force
+// is what the device would be sent (device_safety.hpp); with `workspace`, a tip position out of
+// it is an InputError naming the frame.
+HapticRecord run_haptic(HapticScene& scene, const ProbePath& path, long frames, ForceLimiter* limiter = nullptr,
+                        const Workspace* workspace = nullptr);
 
 nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& scene, const HapticRecord& record,
                               const std::string& mode);

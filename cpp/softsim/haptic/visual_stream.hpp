@@ -7,9 +7,16 @@
 //            mesh's boundary nodes, ascending; little-endian as the machine writes them)
 //   frames   per picture: float64 t (s, the device's time), then N × 3 float32 positions
 //            x = X + u (m) of those nodes, in the same order
+// The path obeys the output rules of every file a tool writes (io/output_guard.hpp), checked by
+// the tool before anything is computed, with one exception: a named pipe is allowed. A regular
+// file is recorded as written, so a failed run removes its partial stream. A stream that cannot
+// be written any more (its pipe's reader left, the disk is full) stops: the live loop goes on,
+// and the artifact says at which frame and why.
 #include <cstdio>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "softsim/mesh/tet_mesh.hpp"
 
@@ -31,6 +38,8 @@ class VisualStream {
   // `every` frames.
   void after_frame(long frame, double t, const double* u);
   long pictures() const { return pictures_; }
+  // The artifact's "visual" member: path, pictures written, and why and when the stream stopped.
+  nlohmann::json payload() const;
 
  private:
   const mesh::TetMesh* mesh_;
@@ -40,6 +49,8 @@ class VisualStream {
   std::vector<int> nodes_;
   std::vector<float> positions_;  // sized once
   long pictures_ = 0;
+  long stopped_at_ = 0;     // frame at which writing failed (0: never)
+  std::string stopped_why_;
 };
 
 }  // namespace softsim::haptic

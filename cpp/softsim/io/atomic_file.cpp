@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sys/stat.h>
@@ -46,6 +47,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(path + ": cannot write output file");
+    errno = 0;
     try {
       writer(out);
     } catch (...) {
@@ -55,10 +57,13 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
     }
     out.flush();
     if (!out) {
+      // errno of the failed write: a full disk, or the file-size limit (SIGXFSZ is ignored).
+      const std::string why = errno ? std::string(": ") + std::strerror(errno) : std::string();
       std::remove(tmp.c_str());
-      throw InputError(path + ": write failed");
+      throw InputError(path + ": write failed" + why);
     }
   }
+  keep_previous(path);  // an earlier run's file comes back if this run fails
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     std::remove(tmp.c_str());
     throw InputError(path + ": cannot rename temporary file into place");
