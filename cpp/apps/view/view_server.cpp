@@ -48,6 +48,10 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   beast::flat_buffer buffer_;
   std::deque<std::pair<std::string, bool>> outgoing_;
   bool writing_ = false, active_ = false, closing_ = false;
+  // States on request: a client that draws slower than the states come asks for each one, so
+  // the one it gets is the newest, not one queued behind others in the socket.
+  bool pull_ = false;
+  int requested_ = 0;
   double last_t_ = 0;
   bool has_last_ = false;
   long mesh_sent_ = -2;
@@ -246,6 +250,10 @@ void WsSession::on_read(beast::error_code ec) {
         server_.stop();
         return;
       case haptic::ClientMessage::Kind::hello:
+        pull_ = m.pull;
+        break;
+      case haptic::ClientMessage::Kind::next:
+        requested_ = 1;
         break;
       case haptic::ClientMessage::Kind::invalid:
         send(haptic::format_error(m.error));
@@ -260,7 +268,8 @@ void WsSession::tick() {
   if (!active_) return;
   // A state only when the previous ones have gone out: a slow client skips states, and the
   // loop never sees it (it publishes into its triple buffer regardless).
-  if (!writing_ && outgoing_.empty() && server_.loop().take_state()) {
+  if (!writing_ && outgoing_.empty() && (!pull_ || requested_ > 0) && server_.loop().take_state()) {
+    requested_ = 0;
     const haptic::ViewState& s = server_.loop().state();
     if (s.topology.version != mesh_sent_) {
       send(haptic::format_mesh(s.topology));

@@ -45,7 +45,7 @@ ClientMessage parse_client_message(const std::string& text, double last_t, bool 
   }
   const auto type = j.find("type");
   if (type == j.end() || !type->is_string()) {
-    m.error = "/type: expected \"hello\", \"sample\" or \"stop\"";
+    m.error = "/type: expected \"hello\", \"sample\", \"next\" or \"stop\"";
     return m;
   }
   const std::string& kind = type->get_ref<const std::string&>();
@@ -55,7 +55,17 @@ ClientMessage parse_client_message(const std::string& text, double last_t, bool 
       m.error = "/protocol: expected " + std::to_string(kViewProtocol) + " (softsim-view)";
       return m;
     }
+    const auto states = j.find("states");
+    if (states != j.end()) {
+      if (!states->is_string() || (*states != "push" && *states != "pull")) {
+        m.error = "/states: expected \"push\" or \"pull\"";
+        return m;
+      }
+      m.pull = *states == "pull";
+    }
     m.kind = ClientMessage::Kind::hello;
+  } else if (kind == "next") {
+    m.kind = ClientMessage::Kind::next;
   } else if (kind == "stop") {
     m.kind = ClientMessage::Kind::stop;
   } else if (kind == "sample") {
@@ -88,7 +98,7 @@ ClientMessage parse_client_message(const std::string& text, double last_t, bool 
     }
     m.kind = ClientMessage::Kind::sample;
   } else {
-    m.error = "/type: expected \"hello\", \"sample\" or \"stop\"";
+    m.error = "/type: expected \"hello\", \"sample\", \"next\" or \"stop\"";
   }
   return m;
 }

@@ -2,7 +2,9 @@
 // The viewer's wire protocol, "softsim-view" version 1 (cpp/apps/haptic_sim.md, "The live scene
 // in a browser"): JSON text messages over a WebSocket, plus one binary message of positions after
 // each state. Client to server:
-//   {"type": "hello", "protocol": 1}                       optional; a different version is refused
+//   {"type": "hello", "protocol": 1, "states": "push"}     optional; a different version is refused;
+//                                                          "pull": a state only after each "next"
+//   {"type": "next"}                                       pull: send the newest state once
 //   {"type": "sample", "t": s, "p": [x, y, z], "blade": false, "edge": [ex, ey, ez]}
 //                                                          the tool tip on the sender's clock
 //   {"type": "stop"}                                       ends the session (artifact, trajectory)
@@ -22,8 +24,9 @@ inline constexpr const char* kViewProtocolName = "softsim-view";
 inline constexpr std::size_t kViewMaxMessage = 4096;  // bytes: a sample is well under 300
 
 struct ClientMessage {
-  enum class Kind { hello, sample, stop, invalid };
+  enum class Kind { hello, sample, next, stop, invalid };
   Kind kind = Kind::invalid;
+  bool pull = false;  // hello: states on request ("next") instead of at the server's rate
   PointerSample sample;
   std::string error;  // kind invalid: what was expected
 };

@@ -10,7 +10,8 @@ const $ = (id) => document.getElementById(id);
 const canvas = $('view');
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
 renderer.setPixelRatio(window.devicePixelRatio);
-const BACKGROUND = new THREE.Color(0x20242b);
+const BACKGROUND_HEX = 0x20242b;  // also the page's background (index.html)
+const BACKGROUND = new THREE.Color(BACKGROUND_HEX);
 renderer.setClearColor(BACKGROUND);
 const scene = new THREE.Scene();
 const camera = new THREE.PerspectiveCamera(40, 1, 1e-4, 100);
@@ -186,10 +187,15 @@ function setStatus(text, bad) { $('status').textContent = text; $('status').clas
 function connect() {
   ws = new WebSocket(`ws://${location.host}/`);
   ws.binaryType = 'arraybuffer';
-  ws.onopen = () => { ws.send(JSON.stringify({ type: 'hello', protocol: PROTOCOL })); setStatus('connected'); };
+  ws.onopen = () => { ws.send(JSON.stringify({ type: 'hello', protocol: PROTOCOL, states: 'pull' })); ws.send('{"type": "next"}'); setStatus('connected'); };
   ws.onclose = (e) => { setStatus(`disconnected (${e.code}${e.reason ? ': ' + e.reason : ''})`, true); ws = null; };
   ws.onmessage = (e) => {
-    if (typeof e.data !== 'string') { if (pendingState) applyPositions(pendingState, e.data); pendingState = null; return; }
+    if (typeof e.data !== 'string') {
+      if (pendingState) applyPositions(pendingState, e.data);
+      pendingState = null;
+      ws.send('{"type": "next"}');  // the newest state once this one is drawn
+      return;
+    }
     const m = JSON.parse(e.data);
     if (m.type === 'hello') {
       hello = m;
@@ -237,8 +243,25 @@ function applyPositions(s, buffer) {
   drawTrace();
 }
 
-// ---- the display loop: draw, and send the pointer's tip as one sample per display frame ----
-let lastSent = 0;
+// ---- the pointer's tip as samples at 60 Hz, whatever the drawing rate ----
+const SAMPLE_RATE = 60;
+function sendSample() {
+  const tip = currentTip();
+  if (!tip || !ws || ws.readyState !== WebSocket.OPEN) return;
+  const sample = { type: 'sample', t: performance.now() / 1000, p: [tip.x, tip.y, tip.z], blade: blade && pressing };
+  if (sample.blade) {
+    // The edge along the surface normal, from above the surface to twice the press depth.
+    const e = normal.clone().multiplyScalar(2.4 * Math.max(depth, 0.01 * diag));
+    sample.edge = [e.x, e.y, e.z];
+    bladeMarker.position.copy(tip);
+    bladeMarker.scale.set(0.004 * diag, e.length(), 0.004 * diag);
+    bladeMarker.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), normal);
+  }
+  ws.send(JSON.stringify(sample));
+}
+setInterval(sendSample, 1000 / SAMPLE_RATE);
+
+// ---- the display loop ----
 function animate() {
   requestAnimationFrame(animate);
   const w = canvas.clientWidth, h = canvas.clientHeight;
@@ -246,21 +269,6 @@ function animate() {
     renderer.setSize(w, h, false);
     camera.aspect = w / h;
     camera.updateProjectionMatrix();
-  }
-  const tip = currentTip();
-  const now = performance.now() / 1000;
-  if (tip && ws && ws.readyState === WebSocket.OPEN && now > lastSent) {
-    const sample = { type: 'sample', t: now, p: [tip.x, tip.y, tip.z], blade: blade && pressing };
-    if (sample.blade) {
-      // The edge along the surface normal, from above the surface to twice the press depth.
-      const e = normal.clone().multiplyScalar(2.4 * Math.max(depth, 0.01 * diag));
-      sample.edge = [e.x, e.y, e.z];
-      bladeMarker.position.copy(tip);
-      bladeMarker.scale.set(0.004 * diag, e.length(), 0.004 * diag);
-      bladeMarker.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), normal);
-    }
-    ws.send(JSON.stringify(sample));
-    lastSent = now;
   }
   $('depth').textContent = (1e3 * depth).toFixed(2);
   sun.position.copy(camera.position);
@@ -301,7 +309,7 @@ window.softsimView = {
   box() { return { min: box.min.toArray(), max: box.max.toArray() }; },
   // Pixels that are not the background, and pixels that differ between two captures.
   organPixels() {
-    const p = pixels(), bg = [BACKGROUND.r * 255, BACKGROUND.g * 255, BACKGROUND.b * 255];
+    const p = pixels(), bg = [BACKGROUND_HEX >> 16, (BACKGROUND_HEX >> 8) & 255, BACKGROUND_HEX & 255];  // as drawn (sRGB)
     let n = 0;
     for (let i = 0; i < p.length; i += 4)
       if (Math.abs(p[i] - bg[0]) + Math.abs(p[i + 1] - bg[1]) + Math.abs(p[i + 2] - bg[2]) > 30) ++n;
