@@ -7,7 +7,7 @@
 import { createRequire } from 'node:module';
 import path from 'node:path';
 
-const require = createRequire(path.join(process.env.WEB_DIR, 'package.json'));
+const require = createRequire(path.resolve(process.env.WEB_DIR, 'package.json'));
 const puppeteer = require('puppeteer-core');
 const out = (name) => path.join(process.env.OUT_DIR, `${process.env.PREFIX || 'view'}_${name}.png`);
 const checks = [];
@@ -67,9 +67,8 @@ try {
   // Cut: the blade dragged across the top.
   const triangles = await page.evaluate(() => window.softsimView.triangles);
   await page.keyboard.press('b');
-  const span = (box.max[0] - box.min[0]) * 0.3;
-  const a = await page.evaluate((p) => window.softsimView.project(p), [centre[0] - span, centre[1], box.max[2]]);
-  const b = await page.evaluate((p) => window.softsimView.project(p), [centre[0] + span, centre[1], box.max[2]]);
+  // Across the pressed point on the screen, where the pointer met the organ.
+  const a = { x: at.x - 120, y: at.y + 10 }, b = { x: at.x + 120, y: at.y - 10 };
   await page.mouse.move(a.x, a.y);
   await sleep(200);
   await page.mouse.down();

@@ -11,6 +11,7 @@ namespace softsim::haptic {
 
 namespace {
 using Clock = std::chrono::steady_clock;
+constexpr int kCatchUpFrames = 5;  // a loop further behind the wall clock is set back, not raced
 }
 
 ViewLoop::ViewLoop(HapticScene& scene, const Eigen::Vector3d& start, const ViewLoopOptions& options)
@@ -50,18 +51,23 @@ bool ViewLoop::push(const PointerSample& s) {
 void ViewLoop::run() {
   try {
     const double h = scene_.options().frame_step;
-    const auto start = Clock::now();
+    auto start = Clock::now();
     for (long k = 0; !stop_.load(std::memory_order_relaxed) && (options_.max_frames == 0 || k < options_.max_frames);
          ++k) {
       if (options_.paced) {
         // Frame k starts at start + k × frame step on the wall clock; a late frame starts at once
-        // (its lateness is reported) and the next ones catch up, so the device's time holds.
+        // (its lateness is reported) and the next ones catch up. A loop more than a few frames
+        // behind (the machine was busy) does not race to catch up: its clock is set back, as a
+        // device's servo loop just takes its next tick.
         const auto due = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(k * h));
         const auto now = Clock::now();
-        if (now < due)
+        if (now < due) {
           std::this_thread::sleep_until(due);
-        else
-          lag_max_ = std::max(lag_max_, std::chrono::duration<double>(now - due).count());
+        } else {
+          const double late = std::chrono::duration<double>(now - due).count();
+          lag_max_ = std::max(lag_max_, late);
+          if (late > kCatchUpFrames * h) start += now - due;
+        }
       }
       frame(k);
     }
