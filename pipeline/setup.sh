@@ -10,7 +10,11 @@ PACKAGES=(
   python3 python3-matplotlib python3-numpy python3-scipy python3-pytest python3-tqdm python3-meshio
   python3-distributed
   python3-dev pybind11-dev python3-pybind11
+  libboost-dev chromium python3-websocket
 )
+# haptic_sim view's page: three.js and its browser test's puppeteer-core come from npm at build
+# time (Debian's nodejs and npm, unless a Node.js with npm is already there).
+if ! command -v npm > /dev/null 2>&1; then PACKAGES+=(nodejs npm); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -3,6 +3,7 @@
 // force goes back to the device.
 //   run:   the configured input (press, slide, growing sine, chirp, recorded) for `frames` frames
 //   serve: the real-time loop a device bridge drives, over stdin/stdout or UDP on loopback
+//   view:  the live scene with its page in a browser, the pointer as the device (cpp/apps/view/)
 // Both write a "haptic_result" artifact: forces, probe positions, contact, frame times, events.
 // Config reference: cpp/apps/haptic_sim.md.
 #include <unistd.h>
@@ -14,15 +15,32 @@
 #include "softsim/haptic/haptic_config.hpp"
 #include "softsim/haptic/haptic_run.hpp"
 #include "softsim/haptic/realtime_loop.hpp"
+#include "softsim/io/errors.hpp"
 #include "softsim/io/mesh_artifact.hpp"
+#include "view/view_args.hpp"
+#ifdef SOFTSIM_HAVE_VIEW
+#include "view/view_mode.hpp"
+#endif
 
 using namespace softsim;
 
 int main(int argc, char** argv) {
+  // view's own options (--port, --host, --web, --record, --frames, --latency) leave the arguments first.
+  std::vector<std::string> args(argv + 1, argv + argc);
+  view::ViewArgs view_args;
+  try {
+    view_args = view::take_view_args(args);
+  } catch (const InputError& e) {
+    std::cerr << "haptic_sim: error: " << e.what() << "\n";
+    return 2;
+  }
+  std::vector<char*> rest{argv[0]};
+  for (auto& a : args) rest.push_back(a.data());
   app::AppInfo info;
   info.name = "haptic_sim";
   info.summary = "3-D haptic scene at the haptic rate on a dhd_sim model (papers 000, 001): run an input or serve a device";
-  info.modes = {"run", "serve"};
+  info.modes = {"run", "serve", "view"};
+  info.needs_out = !view_args.view;  // view: --out optional (the session's artifact when given)
   info.config_help =
       "  {\"model\": {a dhd_sim config with an explicit solver and no probe},\n"
       "   \"frame_rate\": 1000 Hz, \"frames\": 1000 (run),\n"
@@ -39,8 +57,10 @@ int main(int argc, char** argv) {
       "               \"tool_margin\": m (contact tool), \"adaptive\": {\"kind\": \"linear\"|\"threshold\", \"max_radius\": m, ...}}   (001 §5),\n"
       "   \"realtime\": {\"source\": \"stdin\"|\"udp\", \"port\": 0, \"max_frames\": 0, \"idle_timeout\": 5 s, \"announce\": true,\n"
       "                 \"visual\": {\"path\": FILE, \"every\": 33}}}   (serve)\n"
+      "  view: haptic_sim view --config FILE [--port 8080] [--host 127.0.0.1] [--record FILE] [--out FILE]\n"
+      "        [--frames N] [--latency 0.025] [--web DIR]: the page at http://HOST:PORT/\n"
       "  Full reference: cpp/apps/haptic_sim.md";
-  return app::run_app(argc, argv, info, [](app::AppContext& ctx) {
+  return app::run_app(static_cast<int>(rest.size()), rest.data(), info, [&view_args](app::AppContext& ctx) {
     const io::JsonReader& cfg = ctx.config();
     const std::string mesh_path = ctx.input(haptic::read_haptic_mesh_path(cfg));
     auto mesh = std::make_shared<const mesh::TetMesh>(io::read_mesh_artifact(mesh_path));
@@ -53,7 +73,13 @@ int main(int argc, char** argv) {
       if (tool.surface) ctx.input(tool.surface->source());
     haptic::HapticScene scene(mesh, config.model, config.options);
     haptic::HapticRecord record;
-    if (ctx.mode == "serve") {
+    if (ctx.mode == "view") {
+#ifdef SOFTSIM_HAVE_VIEW
+      record = view::run_view(ctx, view_args, config, scene);
+#else
+      throw InputError("view: this haptic_sim was built without the viewer (Boost.Beast was not found at configure time)");
+#endif
+    } else if (ctx.mode == "serve") {
       const auto& rt = config.realtime;
       // Everything is set up before the device's clock starts: the model above and, with
       // regions, the region at the input's start (its factorisation can take seconds on a fine
@@ -77,7 +103,8 @@ int main(int argc, char** argv) {
     } else {
       record = haptic::run_haptic(scene, config.input, config.frames, &limiter, &workspace);
     }
-    ctx.write(haptic::kHapticSchema, haptic::kHapticSchemaVersion, haptic::haptic_payload(config, scene, record, ctx.mode));
+    if (!ctx.out_path.empty())
+      ctx.write(haptic::kHapticSchema, haptic::kHapticSchemaVersion, haptic::haptic_payload(config, scene, record, ctx.mode));
     const auto ft = haptic::summarize_frame_times(record.compute_seconds, config.options.frame_step);
     std::cerr << "haptic_sim: " << record.frames << " frames, " << scene.substeps() << " substeps of " << scene.dt()
               << " s, frame time p50 " << 1e3 * ft.p50 << " ms p99 " << 1e3 * ft.p99 << " ms, " << ft.deadline_misses
