@@ -178,6 +178,23 @@ SurfacePoint ContactSurface::closest(const Eigen::Vector3d& x, const double* u) 
 
 SurfacePoint ContactSurface::closest_near(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
                                           int max_walk) const {
+  bool unused = false;
+  return walk(x, u, from, nullptr, unused, max_walk);
+}
+
+SurfacePoint ContactSurface::closest_near(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
+                                          const std::vector<char>& older, bool& read_older, int max_walk) const {
+  read_older = false;
+  return walk(x, u, from, &older, read_older, max_walk);
+}
+
+SurfacePoint ContactSurface::walk(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
+                                  const std::vector<char>* older, bool& read_older, int max_walk) const {
+  auto note = [&](int t) {
+    if (older)
+      for (int v : triangles_[t]) read_older = read_older || (*older)[v] != 0;
+  };
+  note(from.triangle);
   SurfacePoint best = closest_on(from.triangle, x, u);
   double best_d = (best.position - x).squaredNorm();
   for (int move = 0; move < max_walk; ++move) {
@@ -186,6 +203,7 @@ SurfacePoint ContactSurface::closest_near(const Eigen::Vector3d& x, const double
       for (int k = node_triangle_begin_[v]; k < node_triangle_begin_[v + 1]; ++k) {
         const int t = node_triangles_[k];
         if (t == current) continue;
+        note(t);
         const SurfacePoint s = closest_on(t, x, u);
         const double d = (s.position - x).squaredNorm();
         // Strictly closer, so an edge or vertex shared by two triangles keeps its triangle.

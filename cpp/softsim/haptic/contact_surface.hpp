@@ -39,6 +39,10 @@ class ContactSurface {
   // while a closer one is found (at most `max_walk` moves). Cost independent of the mesh size.
   SurfacePoint closest_near(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
                             int max_walk = 64) const;
+  // The same walk, telling whether it read a node that `older` (per node) marks as one whose
+  // displacement in `u` may be out of date: then the caller brings u up to date and walks again.
+  SurfacePoint closest_near(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
+                            const std::vector<char>& older, bool& read_older, int max_walk = 64) const;
   // The point of `triangle` with barycentric `weights`, in the deformed state.
   SurfacePoint at(int triangle, const Eigen::Vector3d& weights, const double* u) const;
 
@@ -59,6 +63,8 @@ class ContactSurface {
  private:
   void index_nodes();
   SurfacePoint closest_on(int triangle, const Eigen::Vector3d& x, const double* u) const;
+  SurfacePoint walk(const Eigen::Vector3d& x, const double* u, const SurfacePoint& from,
+                    const std::vector<char>* older, bool& read_older, int max_walk) const;
   Eigen::Vector3d deformed(int node, const double* u) const;
 
   const mesh::TetMesh& mesh_;

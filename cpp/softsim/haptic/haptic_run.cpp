@@ -126,6 +126,7 @@ nlohmann::json regions_payload(const HapticScene& scene) {
           {"frames", st.frames},
           {"secondary_updates", st.secondary_updates},
           {"secondary_skipped", st.secondary_skipped},
+          {"far_field_recoveries", st.far_field_recoveries},
           {"secondary_seconds_total", st.secondary_seconds},
           {"secondary_seconds_max", st.secondary_max_seconds},
           {"tool_covers", b.tool_covers},
@@ -143,8 +144,10 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
   for (const auto& e : scene.events()) events.push_back({{"frame", e.frame}, {"message", e.message}});
   std::vector<int> contact(record.contact.begin(), record.contact.end());
   nlohmann::json cuts = nlohmann::json::array();
-  for (const auto& ev : scene.model().cut_events())
-    cuts.push_back({{"time", ev.time},
+  const auto& cut_events = scene.model().cut_events();
+  for (std::size_t i = 0; i < cut_events.size(); ++i) {
+    const auto& ev = cut_events[i];
+    cuts.push_back({{"time", scene.cut_time(i)},
                     {"elements_removed", ev.report.elements.size()},
                     {"pieces", ev.pieces},
                     {"loose_pieces", ev.loose_pieces},
@@ -153,6 +156,7 @@ nlohmann::json haptic_payload(const HapticConfig& config, const HapticScene& sce
                     {"cut_mode", ev.mode == hybrid::CutMode::separate ? "separate" : "remove"},
                     {"faces_opened", ev.faces},
                     {"node_copies", ev.copies.size()}});
+  }
   double mean_seconds = 0;
   for (double x : record.compute_seconds) mean_seconds += x;
   if (!record.compute_seconds.empty()) mean_seconds /= double(record.compute_seconds.size());

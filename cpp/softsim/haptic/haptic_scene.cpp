@@ -92,6 +92,7 @@ void HapticScene::prepare(const Eigen::Vector3d& probe) {
 void HapticScene::reset() {
   back_to_rest();
   frames_ = 0;
+  model_time_ = 0;
   events_.clear();
 }
 
@@ -163,6 +164,7 @@ void HapticScene::follow_cuts() {
   // Counted before the regions react: a rebuild that fails (a numerical event) is not retried.
   while (cuts_seen_ < events.size()) {
     const auto& ev = events[cuts_seen_++];
+    cut_times_.push_back(regions_ ? model_time_ : ev.time);
     if (ev.mode == hybrid::CutMode::separate) {
       surface_->follow_separation(ev.boundary);
       // Node copies change every region's mesh: the active one is built again on the cut mesh.
@@ -179,14 +181,33 @@ void HapticScene::follow_cuts() {
   }
 }
 
-void HapticScene::update_contact(const Eigen::Vector3d& probe, const double* u) {
+const double* HapticScene::contact_reading(const std::array<int, 3>& nodes) const {
+  if (!regions_) return model_->displacement();
+  const std::vector<char>* far = regions_->far_nodes();
+  if (far && !(*far)[nodes[0]] && !(*far)[nodes[1]] && !(*far)[nodes[2]]) return regions_->published();
+  return regions_->displacement();
+}
+
+void HapticScene::update_contact(const Eigen::Vector3d& probe) {
   if (in_contact_) {
     // Attached: the same material point wherever the tip goes; else the closest point (frictionless).
-    contact_ = options_.contact == ContactMode::attach ? surface_->at(contact_.triangle, contact_.weights, u)
-                                                       : surface_->closest_near(probe, u, contact_);
+    if (options_.contact == ContactMode::attach) {
+      contact_ = surface_->at(contact_.triangle, contact_.weights, contact_reading(contact_.nodes));
+      return;
+    }
+    const std::vector<char>* far = regions_ ? regions_->far_nodes() : nullptr;
+    if (!far) {
+      contact_ = surface_->closest_near(probe, displacement(), contact_);
+      return;
+    }
+    // The walk reads the published displacement; one that reached the far field walks again in
+    // the far field brought up to date, so it answers as if the far field were always current.
+    bool read_older = false;
+    const SurfacePoint s = surface_->closest_near(probe, regions_->published(), contact_, *far, read_older);
+    contact_ = read_older ? surface_->closest_near(probe, displacement(), contact_) : s;
     return;
   }
-  const SurfacePoint s = surface_->closest(probe, u);
+  const SurfacePoint s = surface_->closest(probe, displacement());
   // Grasp, attach: the first frame takes hold; push: only a tip at or below the surface touches it.
   if (options_.contact != ContactMode::push || (probe - s.position).dot(s.normal) <= 0) {
     in_contact_ = true;
@@ -198,6 +219,12 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
   ++frames_;
   if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
   const double k = options_.probe_stiffness;
+  // A cut in this frame is made at its start; one between frames at the last frame's end.
+  model_time_ = (frames_ - 1) * options_.frame_step;
+  struct FrameEnd {
+    HapticScene& s;
+    ~FrameEnd() { s.model_time_ = s.frames_ * s.options_.frame_step; }
+  } frame_end{*this};
   try {
     if (regions_) scheduled_cuts();
     cut_with_blade(probe);
@@ -216,7 +243,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       tool_touching_ = model_->solver().tool_contacts(0) > 0;
       return f;
     }
-    update_contact(probe, displacement());
+    update_contact(probe);
     Eigen::Vector3d f = Eigen::Vector3d::Zero();  // on the tissue
     if (in_contact_) {
       f = k * (probe - contact_.position);
@@ -238,7 +265,7 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       follow_cuts();  // a cut the config scheduled inside this frame
     }
     if (!in_contact_) return Eigen::Vector3d::Zero();
-    contact_ = surface_->at(contact_.triangle, contact_.weights, displacement());
+    contact_ = surface_->at(contact_.triangle, contact_.weights, contact_reading(contact_.nodes));
     return -k * (probe - contact_.position);
   } catch (const NumericalError& e) {
     // Keep answering the device: report, return the model to rest, and start the contact anew.

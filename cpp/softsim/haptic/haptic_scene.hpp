@@ -97,8 +97,14 @@ class HapticScene {
   // The linked regions (null: the whole model): the active region, how often regions were
   // built and handed over, and their statistics.
   const regions::RegionTracker* regions() const { return regions_.get(); }
-  // The model's displacement now (3 per node): the whole model's, or the regions' published one.
+  // The model's displacement now (3 per node): the whole model's, or the regions' published one
+  // (its far field as of the last due recovery, solved on this call if it was deferred: a scene
+  // whose far field nobody reads never solves it; the forces are the same either way).
   const double* displacement() const;
+  // The time at which the model made its i-th cut event (model().cut_events()[i]), s: the
+  // whole model's explicit time, or with regions the frame's start (the regions step, not the
+  // model).
+  double cut_time(std::size_t i) const { return cut_times_.at(i); }
   // The blade's sweeps so far (one per frame the tool moved) and their wall time (s).
   struct BladeStats {
     long sweeps = 0;
@@ -107,7 +113,10 @@ class HapticScene {
   const BladeStats& blade_stats() const { return blade_stats_; }
 
  private:
-  void update_contact(const Eigen::Vector3d& probe, const double* u);
+  void update_contact(const Eigen::Vector3d& probe);
+  // The displacement to read the contact triangle `nodes` in: the regions' published one when
+  // it is current there (primary nodes), else displacement().
+  const double* contact_reading(const std::array<int, 3>& nodes) const;
   // The blade's cut of this frame, then the surface brought up to the model's cuts (the blade's
   // and the config's scheduled ones); a contact on a triangle that left the surface ends.
   void cut_with_blade(const Eigen::Vector3d& probe);
@@ -134,6 +143,8 @@ class HapticScene {
   Eigen::Vector3d previous_tip_ = Eigen::Vector3d::Zero();
   bool has_previous_tip_ = false;
   std::size_t cuts_seen_ = 0;
+  std::vector<double> cut_times_;  // per cut event the surface followed
+  double model_time_ = 0;          // the regions' state time: a frame's start during it
   BladeStats blade_stats_;  // the model's cut events the surface has followed
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
   std::unique_ptr<regions::RegionTracker> regions_;  // the linked regions, or null

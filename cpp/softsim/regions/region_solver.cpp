@@ -116,6 +116,8 @@ RegionSolver::RegionSolver(const mesh::TetMesh& mesh, const hybrid::DhdConfig& m
   interface_f_.assign(ni, 0.0);
   applied_.reserve(16 + region_.interface.size());
   u_.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
+  far_nodes_.assign(mesh.num_nodes(), 1);
+  for (int i : region_.nodes) far_nodes_[i] = 0;
   stats_.setup_seconds = seconds_since(t0);
   start_from({}, {});
 }
@@ -146,7 +148,10 @@ void RegionSolver::start_from(const std::vector<double>& u, const std::vector<do
       solver_->set_prescribed_displacement(static_cast<int>(a), Eigen::Vector3d(interface_last_.data() + 3 * a));
     exchange_->start_at(u_.data());
   }
-  if (condensed_) condensed_->start_modes(u_.data());
+  if (condensed_) {
+    condensed_->drop_kept();  // a recovery kept for the state left behind
+    condensed_->start_modes(u_.data());
+  }
   last_update_ = stats_.frames;
   input_at_update_.assign(u_.begin(), u_.end());
 }
@@ -246,6 +251,22 @@ void RegionSolver::refresh_secondary() {
   // A dynamic secondary steps only at its own rate: its last step (at most one update old) is
   // what the next region starts from.
   if ((exchange_ && !exchange_->dynamic()) || condensed_) secondary_update(true);
+  recover_far_field();
+}
+
+const double* RegionSolver::displacement() const {
+  recover_far_field();
+  return u_.data();
+}
+
+void RegionSolver::recover_far_field() const {
+  if (!condensed_ || !condensed_->recovery_kept()) return;
+  const auto t0 = Clock::now();
+  condensed_->recover_kept(u_.data());
+  ++stats_.far_field_recoveries;
+  const double s = seconds_since(t0);
+  stats_.secondary_seconds += s;
+  stats_.secondary_max_seconds = std::max(stats_.secondary_max_seconds, s);
 }
 
 void RegionSolver::secondary_update(bool forced) {
@@ -266,15 +287,17 @@ void RegionSolver::secondary_update(bool forced) {
   const auto t0 = Clock::now();
   for (int i : region_.nodes)
     for (int c = 0; c < 3; ++c) input_at_update_[3 * i + c] = u_[3 * i + c];
-  if (exchange) {
-    exchange_->solve(u_.data(), gravity_factor());
-    interface_before_ = interface_last_;
-    published_interface(interface_last_);
-  } else {
-    condensed_->recover(u_.data(), gravity_factor());
-  }
   last_update_ = stats_.frames;
   ++stats_.secondary_updates;
+  if (!exchange) {
+    // Condensed: the far field changes no force (pictures only): what the recovery would read
+    // is kept, and the solve waits for someone to read the far field (displacement()).
+    condensed_->keep_for_recovery(u_.data(), gravity_factor());
+    return;
+  }
+  exchange_->solve(u_.data(), gravity_factor());
+  interface_before_ = interface_last_;
+  published_interface(interface_last_);
   const double s = seconds_since(t0);
   stats_.secondary_seconds += s;
   stats_.secondary_max_seconds = std::max(stats_.secondary_max_seconds, s);

@@ -81,6 +81,11 @@ struct RegionStats {
   long local_cuts = 0;                 // cuts done by the primary engine's local update
   double local_cut_seconds = 0, local_cut_max_seconds = 0;
   double interface_seconds = 0; // condensed: the interface product (−S u_I) of every substep, summed
+  // Condensed: far-field recoveries actually solved. A recovery falls due every secondary_every
+  // frames but is solved only when something reads the far field before the next one is due (a
+  // picture, a snapshot, a contact search that reaches it, a hand-over); secondary_updates counts
+  // the due ones.
+  long far_field_recoveries = 0;
 };
 
 class RegionSolver {
@@ -104,8 +109,14 @@ class RegionSolver {
   // Whether a node is solved every frame with forces allowed on it.
   bool interior(int node) const { return region_.interior[node] != 0; }
   // The whole mesh's displacement as the regions publish it (3 per node): the primary region's
-  // now, the secondary region's from its last update.
-  const double* displacement() const { return u_.data(); }
+  // now, the secondary region's from its last due update (condensed: solved here if it was
+  // deferred, exactly what an eager recovery would have written; the forces never depend on it).
+  const double* displacement() const;
+  // The same array without solving a deferred recovery: current on the primary region's nodes
+  // (interior and interface), possibly older on the far field's.
+  const double* published() const { return u_.data(); }
+  // Per global node: 1 where published() may be older than displacement() (not a primary node).
+  const std::vector<char>& far_nodes() const { return far_nodes_; }
   // Brings the secondary region up to the primary's current state now (a region about to be
   // replaced publishes a current field for its successor).
   void refresh_secondary();
@@ -145,7 +156,8 @@ class RegionSolver {
   std::unique_ptr<dynamics::ExplicitSolver> solver_;
   std::unique_ptr<ExchangeSecondary> exchange_;
   std::unique_ptr<CondensedSecondary> condensed_;
-  std::vector<double> u_;           // global published displacement
+  mutable std::vector<double> u_;  // global published displacement (a deferred recovery fills its far field)
+  std::vector<char> far_nodes_;     // per global node: not a primary node
   // Exchange: the interface values of the last two secondary updates (3 per interface node) and
   // the frame of the last one.
   std::vector<double> interface_before_, interface_last_;
@@ -154,7 +166,9 @@ class RegionSolver {
   std::vector<double> interface_u_, interface_f_;
   std::vector<dynamics::AppliedForce> applied_;  // contact forces (local nodes) + interface forces
   std::vector<double> input_at_update_;          // what the last secondary update saw (skipping)
-  RegionStats stats_;
+  mutable RegionStats stats_;  // a deferred recovery done on reading counts and times itself
+  // Condensed: solves the deferred recovery, if one is kept, into u_.
+  void recover_far_field() const;
 };
 
 }  // namespace softsim::regions

@@ -28,6 +28,7 @@ void add(RegionStats& to, const RegionStats& a, const RegionStats& minus) {
   to.local_cuts += a.local_cuts - minus.local_cuts;
   to.local_cut_seconds += a.local_cut_seconds - minus.local_cut_seconds;
   to.local_cut_max_seconds = std::max(to.local_cut_max_seconds, a.local_cut_max_seconds);
+  to.far_field_recoveries += a.far_field_recoveries - minus.far_field_recoveries;
 }
 
 void check_options(const RegionOptions& o) {
@@ -109,7 +110,10 @@ int RegionTracker::covering_level(int centre, const std::vector<int>& nodes) con
 int RegionTracker::target_level(int centre, long frame) {
   const auto& a = options_.adaptive;
   if (a.kind == AdaptiveRadius::Kind::fixed) return 0;
-  const double* u = displacement();
+  // The linear policy reads the centre node: a primary node's published value is current; the
+  // threshold policy reads nodes out to max_radius, the far field's among them.
+  const bool centre_primary = active_ && !active_->far_nodes()[centre];
+  const double* u = a.kind == AdaptiveRadius::Kind::linear && centre_primary ? published() : displacement();
   double r = options_.radius;
   if (a.kind == AdaptiveRadius::Kind::linear) {
     r += a.gradient * Eigen::Vector3d(u + 3 * centre).norm();  // 001 Fig. 5

@@ -61,7 +61,12 @@ class RegionTracker {
   const std::vector<char>& removed() const { return removed_; }
   // Every region back to rest (recovery from a numerical failure).
   void back_to_rest();
+  // The published displacement with the far field current (a deferred recovery solved now if
+  // one is due: RegionSolver::displacement()); published(): without solving it, current on the
+  // active primary region's nodes only; far_nodes(): where published() may be older (null: none).
   const double* displacement() const { return active_ ? active_->displacement() : rest_.data(); }
+  const double* published() const { return active_ ? active_->published() : rest_.data(); }
+  const std::vector<char>* far_nodes() const { return active_ ? &active_->far_nodes() : nullptr; }
   const RegionSolver* active() const { return active_; }
   double active_radius() const { return active_ ? active_->region().radius : 0.0; }
   const RegionBuilds& builds() const { return builds_; }

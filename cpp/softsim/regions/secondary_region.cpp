@@ -248,18 +248,33 @@ std::vector<double> CondensedSecondary::interface_masses() {
 }
 
 void CondensedSecondary::recover(double* u, double gravity_factor) {
+  keep_for_recovery(u, gravity_factor);
+  recover_kept(u);
+}
+
+void CondensedSecondary::keep_for_recovery(const double* u, double gravity_factor) {
   const int ni = static_cast<int>(interface_.size());
-  for (int k = 0; k < ni; ++k) u_i_[k] = u[interface_[k]];
-  rhs_.noalias() = gravity_factor * g_s_;
-  rhs_.noalias() -= K_si_ * u_i_;
+  if (kept_u_i_.size() != ni) kept_u_i_.setZero(ni);  // sized at the first keep, then reused
+  for (int k = 0; k < ni; ++k) kept_u_i_[k] = u[interface_[k]];
+  if (modes() > 0) kept_z_ = z_;  // same size every time: no allocation after the first
+  kept_gravity_ = gravity_factor;
+  kept_ = true;
+}
+
+void CondensedSecondary::recover_kept(double* u) {
+  if (!kept_) return;
+  rhs_.noalias() = kept_gravity_ * g_s_;
+  rhs_.noalias() -= K_si_ * kept_u_i_;
   solver_.solve_in_place(rhs_);
   if (modes() > 0) {
     // u_S = Ψ u_I + Φ (z − L u_I): the static shape plus the modes' motion relative to it.
-    Lu_.noalias() = L_ * u_i_;
-    eta_ = z_ - Lu_;
-    rhs_.noalias() += phi_ * eta_;
+    // (Scratch of its own: Lu_ and eta_ belong to the substep's interface force.)
+    kept_Lu_.noalias() = L_ * kept_u_i_;
+    kept_z_ -= kept_Lu_;
+    rhs_.noalias() += phi_ * kept_z_;
   }
   for (std::size_t k = 0; k < secondary_.size(); ++k) u[secondary_[k]] = rhs_[k];
+  kept_ = false;
 }
 
 }  // namespace softsim::regions

@@ -102,6 +102,14 @@ class CondensedSecondary {
   // The secondary nodes' displacement for the interface displacement in `u` (global, 3 per
   // node): u_S = (K^s_SS)^-1 (f_S − K^s_SI u_I), written into `u`.
   void recover(double* u, double gravity_factor);
+  // Deferred recovery (nobody may read the far field before the next one is due): what
+  // recover() would read now (u_I, the modes' state, the gravity factor) is kept, and the solve
+  // is done only if recover_kept() is called before the next keep(). recover_kept() writes
+  // exactly what recover() would have written at keep() time. No allocation.
+  void keep_for_recovery(const double* u, double gravity_factor);
+  bool recovery_kept() const { return kept_; }
+  void recover_kept(double* u);
+  void drop_kept() { kept_ = false; }
   int interface_dofs() const { return static_cast<int>(interface_.size()); }
   int secondary_dofs() const { return static_cast<int>(secondary_.size()); }
   // Guyan: the far field's mass carried by each interface node (kg, in region.interface order):
@@ -144,6 +152,10 @@ class CondensedSecondary {
   // interface_force(); the central-difference coefficients of a unit modal mass.
   Eigen::MatrixXd phi_, L_, G_;
   Eigen::VectorXd omega2_, z_, z_before_, Lu_, eta_, z_next_;
+  // Deferred recovery: the interface displacement, modal state and gravity factor kept.
+  Eigen::VectorXd kept_u_i_, kept_z_, kept_Lu_;
+  double kept_gravity_ = 0;
+  bool kept_ = false;
   double cd_A_ = 0, cd_B_ = 1, cd_C_ = 0;
 };
 

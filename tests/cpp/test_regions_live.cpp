@@ -1,0 +1,142 @@
+// The live scene with regions while it changes: the far field is recovered only when something
+// reads it (a picture, a snapshot, a contact search that reaches it), with the device's forces
+// bit for bit those of a scene that recovers it at every due frame; a served session without
+// pictures recovers nothing; the cuts' times are the frames' own.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "softsim/haptic/haptic_run.hpp"
+#include "softsim/haptic/haptic_scene.hpp"
+#include "softsim/haptic/realtime_loop.hpp"
+
+#include "support/haptic_block.hpp"
+#include "support/scenes.hpp"
+
+using namespace softsim;
+
+namespace {
+
+using Block = test_scenes::HapticBlock;
+
+const Eigen::Vector3d kTop(0.05, 0.05, 0.05);
+
+// A modal far field (Craig–Bampton, 4 modes) recovered for pictures every 10 frames.
+haptic::HapticOptions modal_regions() {
+  haptic::HapticOptions opt = test_scenes::spring_probe(100, 0.025);
+  opt.regions.far_field_mass = true;
+  opt.regions.far_field_modes = 4;
+  opt.regions.secondary_every = 10;
+  return opt;
+}
+
+// Pressed 4 mm over 0.05 s, then slid 3 cm along x at 0.3 m/s: the contact leaves the first
+// region (hand-overs) and the far field moves.
+Eigen::Vector3d press_and_slide(long k) {
+  const double t = k * 1e-3;
+  const double depth = 0.004 * std::min(1.0, t / 0.05);
+  const double x = t > 0.05 ? std::min(0.03, 0.3 * (t - 0.05)) : 0.0;
+  return kTop + Eigen::Vector3d(x - 0.015, 0, -depth);
+}
+
+}  // namespace
+
+// A scene that reads its far field after every frame (a picture each frame) and one that never
+// does send the same forces, bit for bit; the one nobody reads solves no recovery although
+// recoveries fell due; the other solves at most one per due update.
+TEST(LiveRegions, AFarFieldNobodyReadsIsNeverRecoveredAndTheForcesAreUnchanged) {
+  Block b;
+  haptic::HapticScene read(b.mesh, b.config(40), modal_regions());
+  haptic::HapticScene unread(b.mesh, b.config(40), modal_regions());
+  double checksum = 0;
+  for (long k = 0; k < 200; ++k) {
+    const Eigen::Vector3d fa = read.frame(press_and_slide(k));
+    const Eigen::Vector3d fb = unread.frame(press_and_slide(k));
+    ASSERT_EQ(fa, fb) << "frame " << k;
+    const double* u = read.displacement();
+    for (int i = 0; i < 3 * b.mesh->num_nodes(); ++i) checksum += u[i];
+  }
+  EXPECT_TRUE(std::isfinite(checksum));
+  const auto ra = read.regions()->totals();
+  const auto rb = unread.regions()->totals();
+  EXPECT_GT(read.regions()->builds().switches, 0);  // the slide handed the contact over
+  EXPECT_GT(rb.secondary_updates, 10);              // recoveries fell due ...
+  // ... the unread scene solved only those its hand-overs needed (a successor starts from the
+  // whole published field) and its contact walks that reached the far field near a hand-over;
+  // the read one every due one.
+  EXPECT_GE(rb.far_field_recoveries, unread.regions()->builds().switches);
+  EXPECT_LT(4 * rb.far_field_recoveries, rb.secondary_updates);
+  EXPECT_GE(ra.far_field_recoveries, ra.secondary_updates);
+}
+
+// Pictures read now and then show the far field exactly as a scene reading it every frame
+// shows it at the same frames (the deferred solve writes what the due one would have).
+TEST(LiveRegions, APictureReadLateShowsTheFarFieldOfItsDueFrame) {
+  Block b;
+  haptic::HapticScene every(b.mesh, b.config(40), modal_regions());
+  haptic::HapticScene sometimes(b.mesh, b.config(40), modal_regions());
+  const int n3 = 3 * b.mesh->num_nodes();
+  int compared = 0;
+  for (long k = 0; k < 150; ++k) {
+    every.frame(press_and_slide(k));
+    sometimes.frame(press_and_slide(k));
+    const double* ue = every.displacement();
+    if (k % 33 != 32) continue;
+    const double* us = sometimes.displacement();
+    for (int i = 0; i < n3; ++i) ASSERT_EQ(ue[i], us[i]) << "frame " << k << " dof " << i;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 4);
+  EXPECT_LT(sometimes.regions()->totals().far_field_recoveries, every.regions()->totals().far_field_recoveries);
+}
+
+// The served loop without a visual stream (lines in, answers out, as a device bridge drives it)
+// solves no far-field recovery at all for a grasp held in one region, and answers the offline
+// run's forces for the same positions, bit for bit.
+TEST(LiveRegions, ServedWithoutPicturesNoFarFieldRecoveryRunsAndTheAnswersAreTheOfflineOnes) {
+  Block b;
+  haptic::HapticOptions opt = modal_regions();
+  auto press = [](long k) -> Eigen::Vector3d { return kTop + Eigen::Vector3d(0, 0, -0.004 * std::min(1.0, k / 50.0)); };
+  haptic::HapticScene served(b.mesh, b.config(40), opt);
+  std::ostringstream lines;
+  lines.precision(17);
+  const long frames = 120;
+  for (long k = 0; k < frames; ++k) {
+    const Eigen::Vector3d p = press(k);
+    lines << (k + 1) * 1e-3 << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  }
+  served.prepare(press(0));
+  std::istringstream in(lines.str());
+  std::ostringstream out;
+  const haptic::HapticRecord record = haptic::serve_lines(served, in, out, 0);
+  ASSERT_EQ(record.frames, frames);
+  EXPECT_GE(served.regions()->totals().secondary_updates, frames / 10 - 1);
+  EXPECT_EQ(served.regions()->totals().far_field_recoveries, 0);
+  haptic::HapticScene offline(b.mesh, b.config(40), opt);
+  offline.prepare(press(0));
+  for (long k = 0; k < frames; ++k) ASSERT_EQ(offline.frame(press(k)), record.force[k]) << "frame " << k;
+}
+
+// With regions the model itself does not step: a cut is recorded at the time of the frame that
+// made it (a config's scheduled cut at its frame's start, one between frames at the last frame's
+// end), as the whole model records its own.
+TEST(LiveRegions, CutsAreRecordedAtTheirFramesTime) {
+  Block b;
+  hybrid::DhdConfig config = b.config(40);
+  hybrid::CutSpec scheduled;
+  scheduled.time = 0.0205;  // inside frame 21, [0.020, 0.021]
+  scheduled.sweep = test_scenes::sweep_along_x(0.0, 0.1, 0.052, 0.01, 0.06);
+  config.cuts.push_back(scheduled);
+  haptic::HapticScene scene(b.mesh, config, test_scenes::spring_probe(100, 0.025));
+  for (long k = 0; k < 30; ++k) scene.frame(kTop + Eigen::Vector3d(0.0, -0.02, -0.002));
+  scene.cut(test_scenes::sweep_along_x(0.0, 0.1, 0.03, 0.01, 0.06));
+  ASSERT_EQ(scene.model().cut_events().size(), 2u);
+  EXPECT_NEAR(scene.cut_time(0), 0.020, 1e-12);
+  EXPECT_NEAR(scene.cut_time(1), 0.030, 1e-12);
+  haptic::HapticScene whole(b.mesh, config, test_scenes::spring_probe(100));
+  for (long k = 0; k < 30; ++k) whole.frame(kTop + Eigen::Vector3d(0.0, -0.02, -0.002));
+  ASSERT_EQ(whole.model().cut_events().size(), 1u);
+  // The whole model cuts at its first explicit step at or past the time, inside frame 21.
+  EXPECT_GE(whole.cut_time(0), 0.0205 - whole.dt());
+  EXPECT_LE(whole.cut_time(0), 0.021);
+}
