@@ -140,3 +140,123 @@ TEST(LiveRegions, CutsAreRecordedAtTheirFramesTime) {
   EXPECT_GE(whole.cut_time(0), 0.0205 - whole.dt());
   EXPECT_LE(whole.cut_time(0), 0.021);
 }
+
+namespace {
+
+haptic::HapticOptions background(int swap_after_frames, double prefetch_fraction = 0.5) {
+  haptic::HapticOptions opt = modal_regions();
+  opt.regions.build_in_background = true;
+  opt.regions.swap_after_frames = swap_after_frames;
+  opt.regions.prefetch_fraction = prefetch_fraction;
+  return opt;
+}
+
+std::vector<Eigen::Vector3d> forces(haptic::HapticScene& scene, long frames) {
+  std::vector<Eigen::Vector3d> f;
+  for (long k = 0; k < frames; ++k) f.push_back(scene.frame(press_and_slide(k)));
+  return f;
+}
+
+double peak(const std::vector<Eigen::Vector3d>& f) {
+  double p = 0;
+  for (const auto& x : f) p = std::max(p, x.norm());
+  return p;
+}
+
+}  // namespace
+
+// A region built on the worker and swapped in at the frame that asked for it (and no region
+// asked for ahead of the contact) is the inline build: the same hand-overs at the same frames
+// and the same forces, bit for bit; the state carried over makes the successor continue.
+TEST(LiveRegions, ABackgroundBuildSwappedInAtItsFrameIsTheInlineBuild) {
+  Block b;
+  haptic::HapticScene inline_scene(b.mesh, b.config(40), modal_regions());
+  haptic::HapticScene worker_scene(b.mesh, b.config(40), background(0, 1e9));
+  const auto fi = forces(inline_scene, 200);
+  const auto fw = forces(worker_scene, 200);
+  for (std::size_t k = 0; k < fi.size(); ++k) ASSERT_EQ(fi[k], fw[k]) << "frame " << k;
+  EXPECT_GT(worker_scene.regions()->builds().background_builds, 1);
+  EXPECT_EQ(worker_scene.regions()->builds().swaps, worker_scene.regions()->builds().background_builds);
+  EXPECT_EQ(worker_scene.regions()->builds().builds, inline_scene.regions()->builds().builds);
+}
+
+// Swapped in a fixed number of frames after the request, waiting for the worker if needed, a
+// run is the same whatever the worker's timing: two runs answer the same forces bit for bit.
+TEST(LiveRegions, SwapsAtAFixedFrameAfterTheRequestAreReproducible) {
+  Block b;
+  haptic::HapticScene first(b.mesh, b.config(40), background(4));
+  haptic::HapticScene second(b.mesh, b.config(40), background(4));
+  const auto f1 = forces(first, 200);
+  const auto f2 = forces(second, 200);
+  for (std::size_t k = 0; k < f1.size(); ++k) ASSERT_EQ(f1[k], f2[k]) << "frame " << k;
+  EXPECT_GT(first.regions()->builds().swaps, 1);
+}
+
+// A region swapped in mid-slide continues the state it replaces (positions, velocities, the far
+// field's modes): at every swap the force moves by no more than the slide moves it from frame to
+// frame elsewhere, and by under 2 % of the peak force, where a successor started from rest would
+// drop the whole pressed force. Asked for ahead of the contact, no frame holds the contact. Over
+// the run the forces stay within 3 % (RMS of the peak) of the inline scene's, whose regions lie
+// elsewhere (it moves a region only when the contact leaves it).
+TEST(LiveRegions, ARegionSwappedInMidRunContinuesTheStateItReplaces) {
+  Block b;
+  haptic::HapticScene inline_scene(b.mesh, b.config(40), modal_regions());
+  haptic::HapticScene worker_scene(b.mesh, b.config(40), background(4, 0.3));
+  std::vector<Eigen::Vector3d> fw, fi;
+  std::vector<long> swap_frames;
+  long swaps = 0;
+  for (long k = 0; k < 200; ++k) {
+    fi.push_back(inline_scene.frame(press_and_slide(k)));
+    fw.push_back(worker_scene.frame(press_and_slide(k)));
+    if (worker_scene.regions()->builds().swaps > swaps) {
+      swaps = worker_scene.regions()->builds().swaps;
+      if (k > 0) swap_frames.push_back(k);
+    }
+  }
+  ASSERT_GE(swap_frames.size(), 2u);
+  const double p = peak(fi);
+  double sum = 0;
+  for (std::size_t k = 0; k < fi.size(); ++k) sum += (fw[k] - fi[k]).squaredNorm();
+  EXPECT_LT(std::sqrt(sum / fi.size()) / p, 0.03);
+  // The largest frame-to-frame change of the force away from the swaps (the slide's own).
+  double step = 0;
+  for (std::size_t k = 1; k < fw.size(); ++k)
+    if (std::find(swap_frames.begin(), swap_frames.end(), long(k)) == swap_frames.end())
+      step = std::max(step, (fw[k] - fw[k - 1]).norm());
+  EXPECT_EQ(worker_scene.live_stats().frames_held, 0);  // asked for ahead: never waited on
+  for (long s : swap_frames) {
+    EXPECT_LT((fw[s] - fw[s - 1]).norm() / p, 0.02) << "swap at frame " << s;
+    EXPECT_LE((fw[s] - fw[s - 1]).norm(), step) << "swap at frame " << s;
+  }
+}
+
+// A cut that reaches the far field: the region on the cut mesh is built on the worker while the
+// current one answers (its primary engine cut at once, its far field as before the cut), then
+// swapped in; the frames go on without events, the rebuild is counted, and the forces stay
+// within 5 % (RMS of the peak) of the inline scene that rebuilds inside the frame.
+TEST(LiveRegions, ACutReachingTheFarFieldIsRebuiltBesideTheFrames) {
+  Block b;
+  hybrid::DhdConfig config = b.config(40);
+  hybrid::CutSpec far_cut;
+  far_cut.time = 0.08;
+  far_cut.sweep = test_scenes::sweep_along_x(0.0, 0.1, 0.085, 0.01, 0.06);  // beyond the region
+  config.cuts.push_back(far_cut);
+  auto press = [](long k) -> Eigen::Vector3d { return kTop + Eigen::Vector3d(0, 0, -0.004 * std::min(1.0, k / 50.0)); };
+  haptic::HapticScene inline_scene(b.mesh, config, modal_regions());
+  haptic::HapticScene worker_scene(b.mesh, config, background(3));
+  inline_scene.prepare(press(0));
+  worker_scene.prepare(press(0));
+  std::vector<Eigen::Vector3d> fi, fw;
+  for (long k = 0; k < 160; ++k) {
+    fi.push_back(inline_scene.frame(press(k)));
+    fw.push_back(worker_scene.frame(press(k)));
+  }
+  EXPECT_TRUE(worker_scene.events().empty());
+  EXPECT_EQ(inline_scene.regions()->topology_stats().rebuilds, 1);
+  EXPECT_EQ(worker_scene.regions()->topology_stats().rebuilds, 1);
+  EXPECT_GE(worker_scene.regions()->builds().background_builds, 2);  // the first region, the cut one
+  double sum = 0;
+  for (std::size_t k = 0; k < fi.size(); ++k) sum += (fw[k] - fi[k]).squaredNorm();
+  EXPECT_LT(std::sqrt(sum / fi.size()) / peak(fi), 0.05);
+  EXPECT_GT(std::sqrt(sum / fi.size()), 0.0);  // the far field lagged the cut by three frames
+}

@@ -115,6 +115,10 @@ def test_bad_input_is_answered_on_its_connection_and_the_scene_goes_on(tmp_path)
                 closed = int.from_bytes(frame.data[:2], "big")
                 break
         assert closed == 1009
+        # A page of another site may not open the socket.
+        with pytest.raises(websocket.WebSocketBadStatusException) as refused:
+            websocket.create_connection(view.ws_url, timeout=10, origin="http://elsewhere.example")
+        assert refused.value.status_code == 403
         # ... and the scene went on: a new client drives it, its frames further on.
         third = websocket.create_connection(view.ws_url, timeout=10)
         later = receive_json(third, "state")["frame"]

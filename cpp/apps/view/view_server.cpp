@@ -148,6 +148,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (ec) return;  // closed, timed out or malformed: nothing to answer
     auto request = parser_->release();
     if (websocket::is_upgrade(request)) {
+      // A browser names the page that opens a socket: only this server's own page may drive the
+      // scene (another site open in the same browser may not). Clients outside a browser send
+      // no Origin, or their own host's.
+      const auto origin = request.find(http::field::origin);
+      if (origin != request.end() && origin->value() != "http://" + std::string(request[http::field::host]))
+        return answer(http::status::forbidden, "a WebSocket from another origin\n", "text/plain", false);
       stream_.expires_never();
       std::make_shared<WsSession>(stream_.release_socket(), server_)->run(std::move(request));
       return;

@@ -2,9 +2,13 @@
 // The finite-strain element kernels (TLED, ANP) for a material's hyperelastic law
 // (material/hyperelastic.hpp). The law is chosen here, once per range of elements; below that
 // it is a template parameter of the element loop, so there is no switch or virtual call per
-// element. The neo-Hookean law runs its hand-written vectorised kernels (element_kernels.hpp),
-// the stable neo-Hookean law its own (stable_kernels.hpp); any other law runs the generic kernel, which asks the law for P(F) element by element
-// (forces ⁰V P ∇N, 000 eq. 13 written with P = F S).
+// element. Every law of the variant has a vectorised kernel: the neo-Hookean forms their
+// hand-written ones (element_kernels.hpp), the stable neo-Hookean law its own (stable_kernels.hpp),
+// Mooney–Rivlin, the transversely isotropic law and Prony series on those bases the invariant-form
+// kernel (invariant_kernels.hpp), Ogden the closed-form principal-stretch kernel
+// (ogden_kernels.hpp). A Prony series on an Ogden base, and any law added later, runs the generic
+// kernel, which asks the law for P(F) element by element (forces ⁰V P ∇N, 000 eq. 13 written with
+// P = F S).
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/law_data.hpp"
 #include "softsim/material/hyperelastic.hpp"

@@ -173,6 +173,11 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
       r->require(c.options.tool_margin >= 0 && std::isfinite(c.options.tool_margin), "tool_margin",
                  "a distance >= 0 m from the tool's surface");
     }
+    // Where a new region is built: in the frame (inline) or beside the frames (background).
+    o.build_in_background = r->get_choice("build", {"inline", "background"}, "inline") == "background";
+    o.swap_after_frames = r->get_int32("swap_after_frames", o.swap_after_frames);
+    r->require(o.swap_after_frames >= -1 && o.swap_after_frames <= 1000000, "swap_after_frames",
+               "-1 (swap a region in when it is built) or a frame count in [0, 10^6]");
     o.skip_below = r->get_double("skip_below", o.skip_below);
     r->require(o.skip_below >= 0 && std::isfinite(o.skip_below), "skip_below", "a displacement >= 0 m (0: never skip)");
     if (const auto a = r->optional("adaptive")) {

@@ -87,6 +87,7 @@ void HapticScene::prepare(const Eigen::Vector3d& probe) {
   if (!probe.allFinite()) throw InputError("haptic: probe position is not finite");
   const SurfacePoint s = surface_->closest(probe, displacement());
   regions_->follow(s.nodes, s.weights, frames_);
+  regions_->finish_building();  // before the frames: a region built beside them is waited for here
 }
 
 void HapticScene::reset() {
@@ -110,6 +111,7 @@ double HapticScene::tool_margin() const {
 }
 
 hybrid::DhdScene::CutEvent HapticScene::cut(const cutting::BladeSweep& sweep, hybrid::CutMode mode) {
+  if (regions_ && mode == hybrid::CutMode::separate) regions_->finish_building();  // the cut changes the mesh
   const auto ev = model_->cut(sweep, mode, regions_ ? displacement() : nullptr);
   follow_cuts();
   return ev;
@@ -147,6 +149,7 @@ void HapticScene::cut_with_blade(const Eigen::Vector3d& probe) {
     sweep.b1 = probe + half;
     // A tool at rest, or moving along its own edge, sweeps no area: nothing to cut this frame.
     if (cutting::sweep_problem(sweep).empty()) {
+      if (regions_ && options_.blade_mode == hybrid::CutMode::separate) regions_->finish_building();
       const auto ev = model_->cut(sweep, options_.blade_mode, regions_ ? displacement() : nullptr);
       const double seconds = ev.search_seconds + ev.report.seconds + ev.separation_seconds + ev.pieces_seconds;
       ++blade_stats_.sweeps;
@@ -226,7 +229,10 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
     ~FrameEnd() { s.model_time_ = s.frames_ * s.options_.frame_step; }
   } frame_end{*this};
   try {
-    if (regions_) scheduled_cuts();
+    if (regions_) {
+      regions_->between_frames(frames_);  // a region built beside the frames is swapped in here
+      scheduled_cuts();
+    }
     cut_with_blade(probe);
     if (options_.contact == ContactMode::tool && regions_) {
       const Eigen::Vector3d f = tool_frame_with_regions(probe + options_.tool_offset);
@@ -243,6 +249,8 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       tool_touching_ = model_->solver().tool_contacts(0) > 0;
       return f;
     }
+    const SurfacePoint held = contact_;
+    const bool was_in_contact = in_contact_;
     update_contact(probe);
     Eigen::Vector3d f = Eigen::Vector3d::Zero();  // on the tissue
     if (in_contact_) {
@@ -253,12 +261,29 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
         f.setZero();
       }
     }
-    if (in_contact_)
+    bool apply = in_contact_;
+    if (options_.use_regions && in_contact_) {
+      // The primary region follows the contact (built, moved or resized).
+      regions_->follow(contact_.nodes, contact_.weights, frames_);
+      const regions::RegionSolver* r = regions_->active();
+      if (r && !(r->interior(contact_.nodes[0]) && r->interior(contact_.nodes[1]) && r->interior(contact_.nodes[2]))) {
+        // Its region is being built beside the frames: the contact stays on the material point
+        // the current region holds (the spring stretches meanwhile), or, for a new contact
+        // outside it, the tissue does not move under it until its region arrives.
+        ++live_stats_.frames_held;
+        if (was_in_contact && r->interior(held.nodes[0]) && r->interior(held.nodes[1]) && r->interior(held.nodes[2])) {
+          contact_ = surface_->at(held.triangle, held.weights, regions_->published());
+          f = k * (probe - contact_.position);
+        } else {
+          apply = false;
+          ++live_stats_.frames_unapplied;
+        }
+      }
+    }
+    if (apply)
       for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
     if (options_.use_regions) {
-      // The primary region follows the contact (built, moved or resized), then one frame.
-      if (in_contact_) regions_->follow(contact_.nodes, contact_.weights, frames_);
-      regions_->frame(in_contact_ ? applied_ : std::vector<dynamics::AppliedForce>());
+      regions_->frame(apply ? applied_ : std::vector<dynamics::AppliedForce>());
     } else {
       model_->solver().set_applied_forces(in_contact_ ? applied_ : std::vector<dynamics::AppliedForce>());
       model_->step(substeps_);

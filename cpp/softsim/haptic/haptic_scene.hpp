@@ -111,6 +111,15 @@ class HapticScene {
     double seconds = 0, max_seconds = 0;
   };
   const BladeStats& blade_stats() const { return blade_stats_; }
+  // Regions built beside the frames (RegionOptions::build_in_background): the frames whose
+  // contact lay outside the current region's interior while its region was being built, the
+  // contact then held on the material point the current region holds, or (a new contact there)
+  // the tissue left unmoved under the spring.
+  struct LiveStats {
+    long frames_held = 0;
+    long frames_unapplied = 0;
+  };
+  const LiveStats& live_stats() const { return live_stats_; }
 
  private:
   void update_contact(const Eigen::Vector3d& probe);
@@ -146,6 +155,7 @@ class HapticScene {
   std::vector<double> cut_times_;  // per cut event the surface followed
   double model_time_ = 0;          // the regions' state time: a frame's start during it
   BladeStats blade_stats_;  // the model's cut events the surface has followed
+  LiveStats live_stats_;
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
   std::unique_ptr<regions::RegionTracker> regions_;  // the linked regions, or null
   std::size_t next_scheduled_cut_ = 0;  // regions: the config's cuts made so far

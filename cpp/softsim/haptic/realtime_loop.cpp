@@ -214,7 +214,7 @@ class LineReader {
         if (length_ < kMaxLineBytes + 1) line_[length_++] = c;
         ++bytes_;
       }
-      if (closed_) return bytes_ > 0 ? (closed_ = true, Status::line) : Status::closed;
+      if (closed_) return bytes_ > 0 ? Status::line : Status::closed;  // a last line without its newline
       if (StopSignals::caught()) return Status::stopped;
       pollfd p{fd_, POLLIN, 0};
       const int ready = ::poll(&p, 1, kPollMilliseconds);
@@ -310,6 +310,7 @@ ServedSession serve_lines(HapticScene& scene, int in_fd, int out_fd, const Serve
   FrameServer server(scene, o, log, record, "stdin:");
   LineReader reader(in_fd);
   while (o.max_frames == 0 || record.frames < o.max_frames) {
+    if (StopSignals::caught()) break;  // lines already buffered are not served after a stop
     const LineReader::Status status = reader.next();
     const auto received = Clock::now();
     if (status == LineReader::Status::closed) break;

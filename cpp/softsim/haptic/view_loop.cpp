@@ -26,7 +26,8 @@ ViewLoop::ViewLoop(HapticScene& scene, const Eigen::Vector3d& start, const ViewL
   }
   nodes_seen_ = n;
   cuts_seen_ = scene_.model().cut_events().size();
-  // An hour at 1 kHz grows the record a few times at most; a bounded run sizes it once.
+  // A bounded session (max_frames) sizes the record once; an open one starts with a minute and
+  // grows by doubling (a copy of the record inside one frame, 6 times in an hour at 1 kHz).
   record_.reserve(options_.max_frames > 0 ? options_.max_frames : 60000);
 }
 

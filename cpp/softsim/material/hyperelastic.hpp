@@ -41,9 +41,9 @@
 // step). Both run their own kernel (fem/law_kernels.cpp); without internal variables (static
 // solver, outputs) the viscoelastic law is its relaxed response. Ogden-type laws written in
 // principal stretches fit the interface as it is (P and dP from the eigen-decomposition of C:
-// ogden.hpp). The neo-Hookean law keeps its hand-written vectorised kernels
-// (fem/element_kernels.hpp), the stable neo-Hookean law its own (fem/stable_kernels.hpp); any
-// other law runs the generic kernel, vectorised as far as its first_piola allows.
+// ogden.hpp). The explicit kernels of the laws here are vectorised and tested against their
+// first_piola (fem/law_kernels.hpp says which runs which); a new law runs the generic kernel,
+// which calls its first_piola per element, until it gets one of its own.
 #include <string>
 #include <variant>
 

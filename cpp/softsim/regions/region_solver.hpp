@@ -68,6 +68,18 @@ struct RegionOptions {
   // Condensed: the interface product in single precision (CondensedSecondary::use_single_precision).
   bool single_precision = false;
   AdaptiveRadius adaptive;
+  // Where a new region (the contact moved on, a size change, a cut that reaches the far field)
+  // is built: in the frame that needs it (inline), or on a worker thread beside the frames while
+  // the current region keeps answering (background; RegionTracker). Background only: the frames
+  // after the request at which the built region is swapped in, waiting for the worker if it is
+  // not done (>= 0: the same frame whatever the machine, for reproducible offline runs), or -1:
+  // at the first frame boundary after it is done (a live device never waits).
+  bool build_in_background = false;
+  int swap_after_frames = -1;
+  // Background: a region around the contact node is requested before the contact leaves the
+  // current one, once the contact node lies farther than this fraction of the radius from the
+  // centre (the next region is usually ready when it is needed).
+  double prefetch_fraction = 0.5;
 };
 
 struct RegionStats {

@@ -56,25 +56,36 @@ RegionTracker::RegionTracker(const mesh::TetMesh& mesh, const hybrid::DhdConfig&
   level_frames_.assign(adaptive ? options.adaptive.levels : 1, 0);
 }
 
-void RegionTracker::update_linear() {
-  const int n = mesh_->num_nodes();
+namespace {
+
+struct LinearState {
+  std::vector<double> masses;
+  std::shared_ptr<LinearModel> linear;
+};
+
+// The small-strain model and lumped masses of the mesh a cut left (reads only its arguments:
+// the worker thread calls it too).
+LinearState linear_state(const mesh::TetMesh& mesh, const hybrid::DhdConfig& model,
+                         const std::vector<fem::ElementKind>& kinds, const std::vector<char>& removed) {
+  const int n = mesh.num_nodes();
+  LinearState st;
   // The mesh a cut left: its lumped masses, and its nodes without elements held (they carry no
   // stiffness; a quasi-static secondary would be singular there).
-  const cutting::LiveMesh left = cutting::live_mesh(*mesh_, kinds_, [&](int e) { return removed_[e] != 0; });
-  masses_ = dynamics::lumped_mass(left.mesh, model_.material.elastic.density);
-  std::vector<char> constrained = dynamics::constrained_mask(dynamics::resolve_constraints(model_.scene, n), n);
+  const cutting::LiveMesh left = cutting::live_mesh(mesh, kinds, [&](int e) { return removed[e] != 0; });
+  st.masses = dynamics::lumped_mass(left.mesh, model.material.elastic.density);
+  std::vector<char> constrained = dynamics::constrained_mask(dynamics::resolve_constraints(model.scene, n), n);
   for (int i = 0; i < n; ++i)
-    if (masses_[i] == 0) constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
-  const bool cut = std::find(removed_.begin(), removed_.end(), 1) != removed_.end();
+    if (st.masses[i] == 0) constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
+  const bool cut = std::find(removed.begin(), removed.end(), 1) != removed.end();
   if (cut) {
     // A piece the cut detached is held by nothing: quasi-statically it has no position, and the
     // secondary's system would be singular. The linear model holds it at rest (the explicit
     // primary region still moves whatever of it lies there).
     std::vector<char> held(n, 0);
-    for (const auto& c : model_.scene.constraints)
+    for (const auto& c : model.scene.constraints)
       for (int i : c.nodes) held[i] = 1;
     const cutting::Pieces pieces =
-        cutting::find_pieces(*mesh_, [&](int e) { return removed_[e] != 0; }, [&](int i) { return held[i] != 0; });
+        cutting::find_pieces(mesh, [&](int e) { return removed[e] != 0; }, [&](int i) { return held[i] != 0; });
     std::vector<char> loose(pieces.count, 0);
     for (int k : pieces.loose) loose[k] = 1;
     for (int i = 0; i < n; ++i)
@@ -82,10 +93,18 @@ void RegionTracker::update_linear() {
         constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
   }
   Eigen::VectorXd gravity = Eigen::VectorXd::Zero(3 * n);
-  for (int i = 0; i < n; ++i) gravity.segment<3>(3 * i) = masses_[i] * model_.scene.gravity;
-  linear_ = std::make_shared<LinearModel>(*mesh_, model_.material, std::move(constrained),
-                                          std::move(gravity), masses_, model_.damping_alpha,
-                                          cut ? removed_ : std::vector<char>());
+  for (int i = 0; i < n; ++i) gravity.segment<3>(3 * i) = st.masses[i] * model.scene.gravity;
+  st.linear = std::make_shared<LinearModel>(mesh, model.material, std::move(constrained), std::move(gravity),
+                                            st.masses, model.damping_alpha, cut ? removed : std::vector<char>());
+  return st;
+}
+
+}  // namespace
+
+void RegionTracker::update_linear() {
+  LinearState st = linear_state(*mesh_, model_, kinds_, removed_);
+  masses_ = std::move(st.masses);
+  linear_ = std::move(st.linear);
   linear_stale_ = false;
 }
 
@@ -129,7 +148,8 @@ int RegionTracker::target_level(int centre, long frame) {
 }
 
 void RegionTracker::set_centre(int centre) {
-  if (centre == centre_ || options_.adaptive.kind != AdaptiveRadius::Kind::threshold) return;
+  if (centre == near_centre_ || options_.adaptive.kind != AdaptiveRadius::Kind::threshold) return;
+  near_centre_ = centre;
   near_nodes_.clear();
   near_distance_.clear();
   const Eigen::Vector3d c = mesh_->nodes[centre];
@@ -149,8 +169,23 @@ void RegionTracker::follow(const std::array<int, 3>& nodes, const Eigen::Vector3
   const int centre = inside ? centre_ : nodes[a];
   set_centre(centre);
   const int level = target_level(centre, frame);
-  if (inside && level == active_level_) return;
-  activate(centre, level);
+  const bool background = options_.build_in_background;
+  if (inside && level == active_level_) {
+    // Background: the next region is asked for while the contact is still well inside this one.
+    const double r = active_->region().radius;
+    if (background && !building() &&
+        (mesh_->nodes[nodes[a]] - mesh_->nodes[centre_]).norm() > options_.prefetch_fraction * r)
+      request(nodes[a], level, frame, false);
+    return;
+  }
+  // A region already built for this centre is made active at once (no build); otherwise it is
+  // built here (inline) or asked of the worker while the current region answers (background).
+  const bool cached = centre == centre_ && built_.count(level) && built_.at(level).solver;
+  if (!background || cached) {
+    activate(centre, level);
+    return;
+  }
+  request(centre, level, frame, false);
 }
 
 void RegionTracker::cover(const std::vector<int>& nodes, long frame) {
@@ -202,12 +237,14 @@ void RegionTracker::activate(int centre, int level) {
   // where the secondary put them (quasi-static).
   std::vector<double> u, u_before;
   if (active_) {
-    active_->refresh_secondary();
-    u.assign(active_->displacement(), active_->displacement() + rest_.size());
-    u_before = u;
-    active_->primary_previous(u_before.data());
+    published_state(u, u_before);
     add(retired_, active_->stats(), active_from_);
     ++builds_.switches;
+    if (active_stale_) {  // its far field predates a cut: never to be used again
+      built_.erase(active_level_);
+      active_ = nullptr;
+      active_stale_ = false;
+    }
   }
   if (centre != centre_) {
     built_.clear();  // sized for another contact node
@@ -230,9 +267,133 @@ void RegionTracker::activate(int centre, int level) {
   active_from_ = active_->stats();
 }
 
+RegionTracker::~RegionTracker() {
+  if (pending_.valid()) pending_.wait();
+}
+
+void RegionTracker::request(int centre, int level, long frame, bool for_cut) {
+  if (pending_.valid()) return;
+  pending_centre_ = centre;
+  pending_level_ = level;
+  pending_frame_ = frame;
+  // The worker reads the mesh, the config, the element kinds (none of which a removal changes)
+  // and copies of what the frames change (the removed elements, the linear model's handle).
+  std::shared_ptr<LinearModel> linear = linear_stale_ ? nullptr : linear_;
+  std::vector<double> masses = linear_stale_ ? std::vector<double>() : masses_;
+  std::vector<char> removed = removed_;
+  const double radius = level_radius(level);
+  const long generation = generation_;
+  pending_ = std::async(std::launch::async, [this, centre, level, for_cut, radius, generation,
+                                             linear = std::move(linear), masses = std::move(masses),
+                                             removed = std::move(removed)]() mutable {
+    const auto t0 = Clock::now();
+    Finished done;
+    done.centre = centre;
+    done.level = level;
+    done.generation = generation;
+    done.for_cut = for_cut;
+    if (!linear) {
+      LinearState st = linear_state(*mesh_, model_, kinds_, removed);
+      done.masses = std::move(st.masses);
+      done.linear = std::move(st.linear);
+    } else {
+      done.linear = std::move(linear);
+      done.masses = std::move(masses);
+    }
+    done.solver = std::make_unique<RegionSolver>(*mesh_, model_, kinds_, done.masses, *done.linear, dt_, substeps_,
+                                                 select_primary_region(*mesh_, centre, radius, &removed), options_);
+    done.secondary_seconds = done.solver->stats().secondary_setup_seconds;
+    done.seconds = seconds_since(t0);
+    return done;
+  });
+  if (options_.swap_after_frames == 0) take_finished();  // due in the frame that asked
+}
+
+void RegionTracker::finish_building() {
+  if (pending_.valid()) take_finished();
+}
+
+void RegionTracker::between_frames(long frame) {
+  if (pending_.valid()) {
+    const bool due = options_.swap_after_frames >= 0 && frame >= pending_frame_ + options_.swap_after_frames;
+    if (due || pending_.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+      take_finished();
+    else
+      ++builds_.frames_while_building;
+  }
+  // A cut reached the active region's far field and nothing is on its way for it: ask now.
+  if (active_stale_ && !pending_.valid() && active_) request(centre_, active_level_, frame, true);
+}
+
+void RegionTracker::take_finished() {
+  const auto t0 = Clock::now();
+  pending_.wait();
+  const double waited = seconds_since(t0);
+  builds_.wait_seconds += waited;
+  builds_.wait_max_seconds = std::max(builds_.wait_max_seconds, waited);
+  Finished done = pending_.get();  // a numerical failure of the build is thrown here, in a frame
+  if (done.generation != generation_) {
+    ++builds_.discarded;  // a cut came after it was asked for: built again when needed
+    return;
+  }
+  swap_in(std::move(done));
+}
+
+void RegionTracker::published_state(std::vector<double>& u, std::vector<double>& u_before) {
+  active_->refresh_secondary();
+  u.assign(active_->displacement(), active_->displacement() + rest_.size());
+  u_before = u;
+  active_->primary_previous(u_before.data());
+}
+
+void RegionTracker::swap_in(Finished&& done) {
+  const auto t0 = Clock::now();
+  std::vector<double> u, u_before;  // a swap is an event, not a frame's work: it may allocate
+  if (active_) {
+    published_state(u, u_before);
+    add(retired_, active_->stats(), active_from_);
+    ++builds_.switches;
+  }
+  if (done.masses.size() && done.linear != linear_) {
+    // Built on the cut mesh's linear model: it is the current one from now on.
+    linear_ = done.linear;
+    masses_ = std::move(done.masses);
+    linear_stale_ = false;
+  }
+  if (done.centre != centre_) {
+    built_.clear();
+    centre_ = done.centre;
+  }
+  Built& slot = built_[done.level];
+  slot.solver = std::move(done.solver);
+  slot.linear = done.linear;
+  active_ = slot.solver.get();
+  active_level_ = done.level;
+  if (done.level >= static_cast<int>(level_frames_.size())) level_frames_.resize(done.level + 1, 0);
+  if (!u.empty()) active_->start_from(u, u_before);
+  active_from_ = active_->stats();
+  ++builds_.builds;
+  ++builds_.background_builds;
+  builds_.seconds += done.seconds;
+  builds_.max_seconds = std::max(builds_.max_seconds, done.seconds);
+  if (done.for_cut) {
+    active_stale_ = false;
+    ++topology_.rebuilds;
+    topology_.rebuild_seconds += done.seconds;
+    topology_.rebuild_max_seconds = std::max(topology_.rebuild_max_seconds, done.seconds);
+    topology_.secondary_seconds += done.secondary_seconds;
+    topology_.secondary_max_seconds = std::max(topology_.secondary_max_seconds, done.secondary_seconds);
+  }
+  ++builds_.swaps;
+  const double s = seconds_since(t0);
+  builds_.swap_seconds += s;
+  builds_.swap_max_seconds = std::max(builds_.swap_max_seconds, s);
+}
+
 void RegionTracker::topology_changed(const TopologyChange& change) {
   if (change.empty()) return;
   ++topology_.changes;
+  ++generation_;  // a build in flight was asked for on the mesh before this change
   for (int e : change.removed) removed_[e] = 1;
   linear_stale_ = true;  // regions built from now on see the cut mesh
   const bool removal_only = change.changed.empty() && change.copies.empty();
@@ -257,6 +418,15 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     if (r != active_) {  // a cached region the change reached: built again if it is needed again
       ++topology_.invalidated;
       it = built_.erase(it);
+      continue;
+    }
+    if (options_.build_in_background && removal_only) {
+      // The worker builds the successor on the cut mesh; meanwhile this region answers with the
+      // cut made in its primary engine and its far field as before the cut (stiffer by what
+      // the cut took out of it there), and the next frame boundary asks for the successor.
+      r->remove_primary_elements(change.removed);
+      active_stale_ = true;
+      ++it;
       continue;
     }
     // The active region's secondary factorisation (and condensed interface) no longer holds:

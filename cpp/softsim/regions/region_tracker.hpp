@@ -12,6 +12,7 @@
 // it can be, else the active region is built anew on the cut mesh, and cached regions the
 // change reaches are dropped.
 #include <array>
+#include <future>
 #include <map>
 #include <memory>
 #include <vector>
@@ -28,6 +29,16 @@ struct RegionBuilds {
   double seconds = 0, max_seconds = 0;  // building them
   long tool_covers = 0;    // hand-overs the tool's contact set asked for (moved or grown)
   long late_contacts = 0;  // nodes found in the tool after a frame outside the primary interior
+  // Background builds (RegionOptions::build_in_background): regions built on the worker, those
+  // swapped in, what a swap cost on the frame thread (the state carried over: the far field
+  // recovered, the successor started), the frames answered while a build ran, and how long the
+  // frame thread waited for the worker (swap_after_frames >= 0 only).
+  long background_builds = 0;
+  long swaps = 0;
+  double swap_seconds = 0, swap_max_seconds = 0;
+  long frames_while_building = 0;
+  double wait_seconds = 0, wait_max_seconds = 0;
+  long discarded = 0;  // built on a mesh a later cut changed: thrown away, built again
 };
 
 class RegionTracker {
@@ -35,6 +46,19 @@ class RegionTracker {
   // InputError for bad options (a maximum radius below the radius, fewer than 2 levels, ...).
   RegionTracker(const mesh::TetMesh& mesh, const hybrid::DhdConfig& model, std::vector<fem::ElementKind> kinds,
                 double dt, int substeps, const RegionOptions& options);
+  ~RegionTracker();  // waits for a build in flight
+  RegionTracker(const RegionTracker&) = delete;
+  RegionTracker& operator=(const RegionTracker&) = delete;
+
+  // Background builds: at a frame's start, before anything reads the regions: a finished build
+  // is swapped in (its predecessor's state carried over), or waited for when it is due
+  // (swap_after_frames >= 0). Nothing otherwise.
+  void between_frames(long frame);
+  // Waits for a build in flight and swaps it in (before a cut that changes the mesh itself, a
+  // separation, which the worker must not read while it changes).
+  void finish_building();
+  // Whether a region is being built on the worker now.
+  bool building() const { return pending_.valid(); }
 
   // Makes the active region one that suits the contact on `nodes` with `weights` (barycentric):
   // centred on the node of largest weight, whose neighbours are always interior.
@@ -76,6 +100,20 @@ class RegionTracker {
   const std::vector<long>& frames_per_level() const { return level_frames_; }
 
  private:
+  struct Built {
+    std::unique_ptr<RegionSolver> solver;
+    std::shared_ptr<LinearModel> linear;
+  };
+  struct Finished {
+    int centre = -1, level = -1;
+    long generation = 0;
+    bool for_cut = false;
+    std::unique_ptr<RegionSolver> solver;
+    std::shared_ptr<LinearModel> linear;
+    std::vector<double> masses;  // with linear: the cut mesh's lumped masses
+    double seconds = 0;          // the build on the worker, linear model included
+    double secondary_seconds = 0;
+  };
   int target_level(int centre, long frame);
   double level_radius(int level) const;
   // The smallest level whose region around `centre` holds `nodes` as near nodes.
@@ -87,6 +125,16 @@ class RegionTracker {
   // The small-strain model and the lumped masses of the mesh a cut left (after a cut, at the
   // next build), the old model kept while regions built on it remain.
   void update_linear();
+  // ---- background builds ----
+  // Asks the worker for the region (centre, level) on the current cut mesh; nothing if a build
+  // is in flight already (the next frames ask again once it is done).
+  void request(int centre, int level, long frame, bool for_cut);
+  // Takes the worker's region now (waiting for it if it is not done) and swaps it in.
+  void take_finished();
+  // The worker's region made active, starting from the state the active one publishes.
+  void swap_in(Finished&& done);
+  // The state the active region publishes, brought up to date (what a successor starts from).
+  void published_state(std::vector<double>& u, std::vector<double>& u_before);
 
   const mesh::TetMesh* mesh_;
   hybrid::DhdConfig model_;
@@ -101,12 +149,17 @@ class RegionTracker {
   std::vector<double> rest_;
   // Regions built around the current contact node, by size level, each with the linear model it
   // was built on.
-  struct Built {
-    std::unique_ptr<RegionSolver> solver;
-    std::shared_ptr<LinearModel> linear;
-  };
   int centre_ = -1;
   std::map<int, Built> built_;
+  int near_centre_ = -1;  // the centre near_nodes_ were found around
+  // The build in flight on the worker (background), what it was asked for, and the topology
+  // generation (cuts told so far) it was built on; active_stale_: a cut reached the active
+  // region's far field and its successor on the cut mesh is still to come.
+  std::future<Finished> pending_;
+  int pending_centre_ = -1, pending_level_ = -1;
+  long pending_frame_ = 0;
+  long generation_ = 0;
+  bool active_stale_ = false;
   RegionSolver* active_ = nullptr;
   int active_level_ = -1;
   RegionStats active_from_;  // the active region's statistics when it became active
