@@ -2,6 +2,8 @@
 // reads it (a picture, a snapshot, a contact search that reaches it), with the device's forces
 // bit for bit those of a scene that recovers it at every due frame; a served session without
 // pictures recovers nothing; the cuts' times are the frames' own.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -106,9 +108,18 @@ TEST(LiveRegions, ServedWithoutPicturesNoFarFieldRecoveryRunsAndTheAnswersAreThe
     lines << (k + 1) * 1e-3 << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
   }
   served.prepare(press(0));
-  std::istringstream in(lines.str());
-  std::ostringstream out;
-  const haptic::HapticRecord record = haptic::serve_lines(served, in, out, 0);
+  // The lines through a real pipe, the answers into another (both fit a pipe's buffer).
+  int in_pipe[2], out_pipe[2];
+  ASSERT_EQ(::pipe(in_pipe), 0);
+  ASSERT_EQ(::pipe(out_pipe), 0);
+  const std::string text = lines.str();
+  ASSERT_EQ(::write(in_pipe[1], text.data(), text.size()), static_cast<ssize_t>(text.size()));
+  ::close(in_pipe[1]);
+  const haptic::ServedSession session = haptic::serve_lines(served, in_pipe[0], out_pipe[1], haptic::ServeOptions{});
+  ::close(in_pipe[0]);
+  ::close(out_pipe[0]);
+  ::close(out_pipe[1]);
+  const haptic::HapticRecord& record = session.record;
   ASSERT_EQ(record.frames, frames);
   EXPECT_GE(served.regions()->totals().secondary_updates, frames / 10 - 1);
   EXPECT_EQ(served.regions()->totals().far_field_recoveries, 0);
