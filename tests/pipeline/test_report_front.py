@@ -105,6 +105,17 @@ def test_diff_tells_timings_from_real_changes():
     table = "| r | time/frame (µs) | RMS error (%) |\n| --- | --- | --- |\n| 10 | 0.45 | 19.2 |\n"
     assert results_diff.compare_text(".md", table, table.replace("0.45", "0.52")) == (1, {})
     assert results_diff.compare_text(".md", table, table.replace("19.2", "19.3")) == (0, {"RMS error (%)": 1})
+    # Last-digit changes (another compiler, CPU or summation order) are round-off, not real; a
+    # value that is zero up to round-off may move by more than its own size.
+    roundoff = header + "0 %,6810.1,146.8,1.2e-17\n10 %,6734.3,148.5,0.02800000000001\n"
+    assert results_diff.compare_text(".csv", old, roundoff) == (0, {"round-off": 2})
+    # A "|" inside a cell (|u_x/F_x|) keeps the columns in place; the CPU a time ran on is not a result.
+    piped = "| model | |u_z/F_z| (mm/N) | precompute (s) |\n| --- | --- | --- |\n| RPIM | 6.252 | 0.198 |\n"
+    assert results_diff.compare_text(".md", piped, piped.replace("0.198", "0.964")) == (1, {})
+    assert results_diff.compare_text(".md", piped, piped.replace("6.252", "6.3")) == (0, {"|u_z/F_z| (mm/N)": 1})
+    cpu = "best of 5 repeats (median beside it; AMD EPYC). Speed-up 1.35, 147 µs per step.\n"
+    moved = "best of 5 repeats (median beside it; Intel(R) Xeon(R) Processor). Speed-up 0.79, 480 µs per step.\n"
+    assert results_diff.compare_text(".md", cpu, moved) == (2, {})
     # Which commit ran what is bookkeeping, not a change of results.
     line = "table1 by `dhd_table1` at commit `ac904c2-dirty`.\n"
     assert results_diff.compare_text(".md", line, line.replace("ac904c2", "0123abc")) == (0, {})
