@@ -207,7 +207,7 @@ def cmd_diff(args) -> int:
     if args.restore:
         restored = results_diff.restore(found, args.against)
         print(f"pipeline: restored {len(restored)} file{'s' if len(restored) != 1 else ''} whose only changes "
-              f"were timings or bookkeeping; git status now shows the real changes")
+              f"were timings, round-off or bookkeeping; git status now shows the real changes")
     return 1 if found["real"] else 0
 
 
