@@ -132,3 +132,22 @@ def test_papers_selection_holds_every_experiment_behind_a_papers_table():
     behind = {n for n in shipped if experiment_mod.load(n).results_subdir in paper_folders}
     assert behind <= set(cli.PAPERS), behind - set(cli.PAPERS)
     assert cli._experiment_names("papers") == cli.PAPERS
+
+
+def test_make_python_link_lets_debians_python_import_the_build_from_anywhere(tmp_path):
+    """The README's set-up: after `make build` (its last step, `make python-link`), Debian's
+    python3 imports this build's softsim from any folder, with no PYTHONPATH."""
+    package = ROOT / "build" / "python" / "softsim"
+    if not (package / "__init__.py").exists():
+        pytest.skip("the Python module is not built (SOFTSIM_PYTHON off)")
+    env = {"HOME": str(tmp_path), "PATH": "/usr/bin:/bin"}
+    r = subprocess.run(["make", "-s", "python-link", "PYTHON=/usr/bin/python3"], cwd=ROOT, env=env,
+                       capture_output=True, text=True)
+    assert r.returncode == 0 and "import softsim works" in r.stdout, r.stdout + r.stderr
+    r = subprocess.run(["/usr/bin/python3", "-c", "import softsim; print(softsim.__file__)"], cwd=tmp_path, env=env,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == str((package / "__init__.py").resolve())
+    r = subprocess.run(["make", "-s", "python-unlink", "PYTHON=/usr/bin/python3"], cwd=ROOT, env=env)
+    r = subprocess.run(["/usr/bin/python3", "-c", "import softsim"], cwd=tmp_path, env=env, capture_output=True)
+    assert r.returncode != 0
