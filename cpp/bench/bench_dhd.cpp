@@ -14,7 +14,10 @@
 //                 precision (a measurement of that option, not something the engine does);
 //   BM_LinearRowsInLanes  the rows vectorised the other way (eight rows in the lanes, hardware
 //                 gathers of the displacements), against the engine's kernel;
-//   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic.
+//   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic;
+//   BM_HybridSpeedUp  explicit steps, one thread, at linear shares r = 0, 0.25, 0.5, 0.75, 1 with
+//                 the linear rows in double and in single precision (solver.linear_precision):
+//                 000 Table 1's speed-up against all TLED.
 // Scene: bottom fixed, the top-centre node pushed down (the paper's error scene, Fig. 10).
 #include <benchmark/benchmark.h>
 
@@ -57,7 +60,7 @@ std::vector<ElementKind> partition(int code) {
   if (code == 4) spec.uniform_element = ElementKind::anp;
   if (code >= 10) {
     spec.kind = hybrid::PartitionKind::linear_fraction;
-    spec.linear_fraction = (code - 10) / 10.0;
+    spec.linear_fraction = code >= 100 ? (code - 100) / 100.0 : (code - 10) / 10.0;
   }
   return hybrid::make_partition(m, spec);
 }
@@ -70,9 +73,12 @@ fem::LinearForces linear_forces(int code) {
   return code == 5 ? fem::LinearForces::per_element : fem::LinearForces::assembled;
 }
 
-fem::ElementSet element_set(int code, int tile_nodes = 128) {
-  return fem::ElementSet(paper_mesh(), partition(code), fem::Material::make(kPaper, form(code)), tile_nodes,
-                         linear_forces(code));
+fem::ElementSet element_set(int code, int tile_nodes = 128,
+                            fem::LinearPrecision precision = fem::LinearPrecision::double_precision) {
+  fem::ElementSet set(paper_mesh(), partition(code), fem::Material::make(kPaper, form(code)), tile_nodes,
+                      linear_forces(code));
+  set.set_linear_precision(precision);
+  return set;
 }
 
 // A deformed state: a 20 % shear with a 30° rotation, so the corotational polar decomposition
@@ -90,9 +96,10 @@ std::vector<double> deformed_state() {
 
 // Explicit steps of one partition: steps/s, ns per element of each kind and per node.
 void run_steps(benchmark::State& state, int code, int threads, bool skip_held_nodes,
-               int energy_interval = kStepsPerIteration) {
+               int energy_interval = kStepsPerIteration,
+               fem::LinearPrecision precision = fem::LinearPrecision::double_precision) {
   const auto& m = paper_mesh();
-  fem::ElementSet elements = element_set(code);
+  fem::ElementSet elements = element_set(code, 128, precision);
   dynamics::ExplicitOptions opt;
   opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
   opt.steps = kStepsPerIteration;
@@ -135,6 +142,21 @@ void steps_args(benchmark::internal::Benchmark* b) {
   for (int code : {11, 12, 13, 14}) b->Args({code, 1});  // Table 1's shares of linear elements
 }
 BENCHMARK(BM_Steps)->Apply(steps_args)->ArgNames({"partition", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// 000 Table 1's speed-up: one thread, linear share r = (partition − 100) / 100 (the linear elements
+// farthest from the top centre), the linear rows' values in double (single 0) or single precision
+// (single 1). r = 0 is the all-TLED reference (no rows: precision does not apply).
+void BM_HybridSpeedUp(benchmark::State& state) {
+  run_steps(state, static_cast<int>(state.range(0)), 1, true, kStepsPerIteration,
+            state.range(1) != 0 ? fem::LinearPrecision::single_precision : fem::LinearPrecision::double_precision);
+}
+void hybrid_args(benchmark::internal::Benchmark* b) {
+  b->Args({100, 0});
+  for (int code : {125, 150, 175, 200})
+    for (int single : {0, 1}) b->Args({code, single});
+}
+BENCHMARK(BM_HybridSpeedUp)->Apply(hybrid_args)->ArgNames({"partition", "single"})->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 // The same steps with the held (fixed) nodes updated like the others (skip 0) and left out of
 // the node update (skip 1, the engine's default): the bench scene fixes the bottom layer.
