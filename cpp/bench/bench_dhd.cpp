@@ -6,7 +6,8 @@
 //                 element; for ANP including its nodal-pressure pre-pass, for assembled linear
 //                 elements the rows of every node);
 //   BM_NodalForces  the element phase and the nodal sums: the complete internal forces, per
-//                 element of each kind (what a linear element costs against a TLED one);
+//                 element of each kind (what a linear element costs against a TLED one); both
+//                 also for the r = 0.5 split (partition 15), which the two uniform ones bracket;
 //   BM_LinearRows the assembled linear rows alone, streamed and cache-resident, with the engine's
 //                 kernel and the portable one;
 //   BM_LinearRowsMemoryFloor  reading the rows' stored values once, with no arithmetic;
@@ -180,7 +181,7 @@ void BM_Kernel(benchmark::State& state) {
   state.counters["elements_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * paper_mesh().num_tets(),
                                                         benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Arg(15)->Unit(benchmark::kMicrosecond);
 
 // The complete internal nodal forces from the displacements (element phase and the nodal sums
 // of 000 eq. 23), all elements of one kind: the per-element cost the kinds compare by, since an
@@ -199,7 +200,7 @@ void BM_NodalForces(benchmark::State& state) {
   state.counters["elements_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * paper_mesh().num_tets(),
                                                         benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_NodalForces)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NodalForces)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Arg(15)->Unit(benchmark::kMicrosecond);
 
 // The assembled linear rows of the paper mesh, all nodes once (as in BM_Kernel/partition:2), and
 // the same number of row products over the first eighth of the nodes eight times, whose blocks
