@@ -177,6 +177,7 @@ void BM_Kernel(benchmark::State& state) {
     elements.compute(u.data(), st);
     benchmark::DoNotOptimize(st.min_j);
   }
+  if (elements.assembled_linear()) state.counters["linear_blocks"] = elements.linear_rows().num_blocks();
   // Elements per second; nanoseconds per element = 1e9 / elements_per_s.
   state.counters["elements_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * paper_mesh().num_tets(),
                                                         benchmark::Counter::kIsRate);
