@@ -12,7 +12,7 @@
 //                 kernel and the portable one;
 //   BM_LinearRowsMemoryFloor  reading the rows' stored values once, with no arithmetic;
 //   BM_LinearRowsSingleValues the rows' product with the stored values rounded to single
-//                 precision (a measurement of that option, not something the engine does);
+//                 precision (the engine's solver.linear_precision "single");
 //   BM_LinearRowsInLanes  the rows vectorised the other way (eight rows in the lanes, hardware
 //                 gathers of the displacements), against the engine's kernel;
 //   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic;
@@ -259,7 +259,6 @@ void BM_LinearRowsMemoryFloor(benchmark::State& state) {
 }
 BENCHMARK(BM_LinearRowsMemoryFloor)->Unit(benchmark::kMicrosecond);
 
-#ifdef SOFTSIM_ROWS_AVX512
 // The largest difference between forces `f` and the engine's rows' product at `u`, relative to
 // the largest of the latter: what another evaluation of the rows changes.
 double difference_to_rows(const fem::LinearStiffnessRows& rows, const std::vector<double>& u,
@@ -276,40 +275,31 @@ double difference_to_rows(const fem::LinearStiffnessRows& rows, const std::vecto
   return difference / largest;
 }
 
-// What single-precision stiffness values would buy: the engine's kernel (rows_avx512::row) over
-// the same blocks with each value stored as a float (the first eight of a block in 32 bytes,
-// widened by one conversion), so the rows stream 45 % of the bytes. The engine keeps double
-// precision (the paper's benchmark is in double precision); this measures the option. Counter:
-// the largest force difference to the double-precision rows relative to the largest force (the
-// price in accuracy).
+// What single-precision stiffness values buy (LinearPrecision::single_precision, the engine's
+// solver.linear_precision "single"): the engine's kernel over the same blocks with each value
+// stored as a float (the first eight of a block in 32 bytes, widened by one conversion), so the
+// rows stream 45 % of the bytes. Counter: the largest force difference to the double-precision
+// rows relative to the largest force (the price in accuracy).
 void BM_LinearRowsSingleValues(benchmark::State& state) {
   const auto& m = paper_mesh();
   const fem::LinearStiffnessRows rows(m, std::vector<ElementKind>(m.num_tets(), ElementKind::linear),
                                       fem::Material::make(kPaper, material::NeoHookeanForm::paper));
-  const int n = m.num_nodes(), blocks = rows.num_blocks();
-  std::vector<int> first(n + 1, blocks), neighbour(blocks);
-  fem::AlignedVector<float> values(8 * static_cast<std::size_t>(blocks));
-  std::vector<float> k22(blocks);
-  for (int a = 0; a < n; ++a) first[a] = rows.first_block(a);
-  for (int p = 0; p < blocks; ++p) {
-    neighbour[p] = 3 * rows.column_node(p);
-    for (int q = 0; q < 8; ++q) values[8 * static_cast<std::size_t>(p) + q] = static_cast<float>(rows.value(p, q / 3, q % 3));
-    k22[p] = static_cast<float>(rows.value(p, 2, 2));
-  }
+  fem::LinearStiffnessRows single = rows;
+  single.set_precision(fem::LinearPrecision::single_precision);
+  std::vector<int> nodes(m.num_nodes());
+  for (int a = 0; a < m.num_nodes(); ++a) nodes[a] = a;
   const std::vector<double> u = deformed_state();
   std::vector<double> f(u.size());
   for (auto _ : state) {
-    for (int a = 0; a < n; ++a)
-      fem::rows_avx512::row(values.data() + 8 * static_cast<std::size_t>(first[a]), k22.data() + first[a],
-                            neighbour.data() + first[a], first[a + 1] - first[a], u.data(), f.data() + 3 * a);
+    single.multiply_rows(nodes.data(), nodes.data() + nodes.size(), u.data(), f.data());
     benchmark::DoNotOptimize(f.data());
   }
+  const double blocks = rows.num_blocks();
   state.counters["max_rel_force_error"] = difference_to_rows(rows, u, f);
-  state.counters["bytes"] = static_cast<double>(values.size() * sizeof(float) + k22.size() * sizeof(float) +
-                                                neighbour.size() * sizeof(int) + first.size() * sizeof(int));
+  state.counters["bytes"] = blocks * (9 * sizeof(float) + sizeof(int)) + (m.num_nodes() + 1) * sizeof(int);
 }
 BENCHMARK(BM_LinearRowsSingleValues)->Unit(benchmark::kMicrosecond);
-#endif
+
 
 #ifdef SOFTSIM_ROWS_AVX512
 // The other way to vectorise the rows, measured against the engine's: eight rows at once, one
