@@ -71,9 +71,10 @@ test-all: build
 reproduce: build
 	@$(PYTHON) -m pipeline run all -j $(JOBS) $(PIPELINE_FLAGS)
 
-# The experiments behind the three papers' tables and figures (pipeline/cli.py, PAPERS), at full
-# size, without the haptic, cutting, contact, stability and benchmark studies that take most of
-# the full run's time; REPORT.md then says that only part of the experiments were rerun.
+# The experiments whose tables and figures stand beside the three papers' (pipeline/cli.py,
+# PAPERS), at full size, without our own studies around them and the haptic, cutting, contact,
+# stability and benchmark experiments that take most of the full run's time; REPORT.md then says
+# that only part of the experiments were rerun.
 reproduce-quick: build
 	@$(PYTHON) -m pipeline run papers -j $(JOBS) $(PIPELINE_FLAGS)
 

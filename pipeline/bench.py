@@ -92,8 +92,8 @@ def kernel_ratios(path):
             ("BM_NodalForces", "Internal nodal forces from the displacements (element phase and the nodal sums of "
              "000 eq. 23)",
              [("BM_LinearRows/repeats:1/kernel:0", "the assembled rows' product alone (without the nodal sums)"),
-              ("BM_LinearRowsSingleValues", "the same product with single-precision stored values (a measured "
-               "option, not used by the engine)"),
+              ("BM_LinearRowsSingleValues", "the same product with single-precision stored values (the "
+               "option solver.linear_precision \"single\")"),
               ("BM_LinearRowsInLanes", "the same product vectorised eight rows at a time with gathered "
                "displacements (a measured alternative, not used by the engine)"),
               ("BM_LinearRowsMemoryFloor", "memory floor of the assembled rows (reading their stored values once, "

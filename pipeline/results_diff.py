@@ -10,8 +10,11 @@ text file with its committed version value by value:
     (TIMING_UNIT), else as a real change; the provenance lines (which commit ran what) are
     bookkeeping;
   - the manifest and binary files (plots, VTU) are listed apart, not judged.
-With --restore, the files whose only changes are timings are checked out again, so that
-`git status` then shows the real changes alone."""
+A number that moved by less than ROUNDOFF of its column's largest magnitude (of its own, in
+prose), or by less than ZERO, is round-off: another compiler, CPU or summation order gives such last-digit changes in
+every floating-point result, and they are counted apart, not as real changes.
+With --restore, the files whose only changes are timings and round-off are checked out again, so
+that `git status` then shows the real changes alone."""
 import csv
 import io
 import re
@@ -23,12 +26,16 @@ from pipeline.paths import RESULTS, ROOT
 
 TIMING_HEADER = re.compile(
     r"time|µs|\bus\b|\bms\b|\(s\)|\bs\)|seconds|\bs per\b|per s\b|/s\b|speed|gain|rate|\bhz\b|wall|late|"
-    r"p50|p99|median|real-time factor|throughput|set-?up|build|duration|frames? over",
+    r"p50|p99|median|real-time factor|throughput|set-?up|build|duration|frames? over|\bns\b|(vs|/) all-TLED",
     re.IGNORECASE)
-TIMING_UNIT = re.compile(r"^\s?(ns|µs|us|ms|s|min|h|hz|khz|×|x)\b", re.IGNORECASE)
+TIMING_UNIT = re.compile(r"^\s?(ns|[µμ]s|us|ms|s|min|h|hz|khz|×|x|steps/s)(?!\w)", re.IGNORECASE)
 NUMBER = re.compile(r"[-+]?(?:\d+(?:[.,]\d+)*(?:\.\d+)?|\.\d+)(?:e[-+]?\d+)?", re.IGNORECASE)
-BOOKKEEPING = re.compile(r"commit `|at commit|\bdirty\b|pipeline run ")
+BOOKKEEPING = re.compile(r"commit `|at commit|\"commit\":|\bdirty\b|pipeline run ")
+# The machine a timing ran on, as the reports name it (its CPU model): not a result.
+CPU = re.compile(r"\b(?:Intel|AMD|Apple|ARM|Ampere)\b(?:\((?:R|TM)\)|[^;).])*?(?=\)|;|\. |$)")
 TEXT_SUFFIXES = {".csv", ".md", ".txt", ".json"}
+ROUNDOFF = 1e-6
+ZERO = 1e-12  # below this a difference is round-off whatever the scale (a quantity that is zero)
 
 
 def _git(*args) -> str:
@@ -49,31 +56,54 @@ def committed_text(ref: str, path: str) -> Optional[str]:
 
 
 # ----------------------------------------------------------------------------- comparison
-def _numbers_equal(a: str, b: str) -> bool:
+ROUNDOFF_KEY = "round-off"
+
+
+def _float(text: str) -> Optional[float]:
     try:
-        return float(a) == float(b)
+        return float(text.replace(",", "")) if text.strip() else None
     except ValueError:
-        return a == b
+        return None
+
+
+def _column_scales(rows: List[List[str]], width: int) -> List[float]:
+    scales = [0.0] * width
+    for row in rows:
+        for i, cell in enumerate(row[:width]):
+            x = _float(cell)
+            if x is not None and abs(x) != float("inf"):
+                scales[i] = max(scales[i], abs(x))
+    return scales
+
+
+def _add(counts: Dict[str, int], key: str, n: int = 1) -> None:
+    counts[key] = counts.get(key, 0) + n
 
 
 def compare_rows(old_rows: List[List[str]], new_rows: List[List[str]]) -> Tuple[int, Dict[str, int]]:
-    """(timing cells changed, {header: real cells changed}) of two tables whose first row is the
-    header; a changed header or row count is a real change of the whole table."""
+    """(timing cells changed, {header: real cells changed, "round-off": cells}) of two tables
+    whose first row is the header; a changed header or row count is a real change of the whole
+    table."""
     if not old_rows or not new_rows or old_rows[0] != new_rows[0] or len(old_rows) != len(new_rows):
         return 0, {"the table's shape or header": 1}
     header = new_rows[0]
+    scales = _column_scales(old_rows[1:] + new_rows[1:], len(header))
     timing, real = 0, {}
     for old, new in zip(old_rows[1:], new_rows[1:]):
         if len(old) != len(new):
-            real["a row's length"] = real.get("a row's length", 0) + 1
+            _add(real, "a row's length")
             continue
-        for name, a, b in zip(header, old, new):
-            if a == b or _numbers_equal(a, b):
+        for name, scale, a, b in zip(header, scales, old, new):
+            if a == b:
                 continue
-            if TIMING_HEADER.search(name):
+            x, y = _float(a), _float(b)
+            # A time is named by its column, or by its row where the first column names the quantity.
+            if TIMING_HEADER.search(name) or TIMING_HEADER.search(old[0]):
                 timing += 1
+            elif x is not None and y is not None and abs(x - y) <= max(ROUNDOFF * scale, ZERO):
+                _add(real, ROUNDOFF_KEY)
             else:
-                real[name] = real.get(name, 0) + 1
+                _add(real, name)
     return timing, real
 
 
@@ -84,6 +114,7 @@ def compare_prose(old: str, new: str) -> Tuple[int, Dict[str, int]]:
         return 0, {"the text's lines": abs(len(old_lines) - len(new_lines)) or 1}
     timing, real = 0, {}
     for a, b in zip(old_lines, new_lines):
+        a, b = CPU.sub("<cpu>", a), CPU.sub("<cpu>", b)
         if a == b or BOOKKEEPING.search(a) and BOOKKEEPING.search(b):
             continue
         ta, tb = NUMBER.split(a), NUMBER.split(b)
@@ -94,11 +125,36 @@ def compare_prose(old: str, new: str) -> Tuple[int, Dict[str, int]]:
         for i, (x, y) in enumerate(zip(na, nb)):
             if x == y:
                 continue
-            if TIMING_UNIT.match(ta[i + 1]):
+            fx, fy = _float(x), _float(y)
+            if _unit_follows(ta, i):
                 timing += 1
+            elif fx is not None and fy is not None and abs(fx - fy) <= max(ROUNDOFF * max(abs(fx), abs(fy)), ZERO):
+                _add(real, ROUNDOFF_KEY)
             else:
-                real["numbers in the text"] = real.get("numbers in the text", 0) + 1
+                _add(real, "numbers in the text")
     return timing, real
+
+
+def _cells(line: str) -> List[str]:
+    """A Markdown table row's cells. Our tables are written "| a | b |" (pipeline.tables), so
+    " | " separates cells and a "|" inside one (|u_x/F_x|) stays in it."""
+    line = line.strip()
+    if line.startswith("| ") and line.endswith(" |"):
+        return [c.strip() for c in line[2:-2].split(" | ")]
+    return [c.strip() for c in line.strip("|").split("|")]
+
+
+def _unit_follows(texts: List[str], i: int) -> bool:
+    """Whether number i of a line split at its numbers (texts[i] before it, texts[i + 1] after)
+    is a time: a time unit follows it, perhaps after a range's second number ("0.711-0.841 µs"),
+    or words that name a time or a speed stand just before it."""
+    before = re.split(r"[;,.:(]", texts[i][-24:])[-1]  # within the same clause
+    if TIMING_HEADER.search(before):  # "speed gain 1.13", "a speed-up of 1.35"
+        return True
+    j = i + 1
+    while j < len(texts) - 1 and texts[j].strip() in ("", "-", "–", "to", "and"):
+        j += 1
+    return j < len(texts) and bool(TIMING_UNIT.match(texts[j]))
 
 
 def split_markdown(text: str) -> Tuple[List[List[List[str]]], str]:
@@ -107,7 +163,7 @@ def split_markdown(text: str) -> Tuple[List[List[List[str]]], str]:
     tables, rest, current = [], [], None
     for line in text.splitlines():
         if line.startswith("|"):
-            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            cells = _cells(line)
             if current is None:
                 current = []
                 tables.append(current)
@@ -139,7 +195,7 @@ def compare_text(suffix: str, old: str, new: str) -> Tuple[int, Dict[str, int]]:
 
 # ----------------------------------------------------------------------------- the command
 def classify(ref: str = "HEAD") -> Dict[str, list]:
-    """{"real": [(path, {what: count})], "timing": [(path, cells)], "unchanged": [path],
+    """{"real": [(path, {what: count})], "timing": [(path, values: timings and round-off)], "unchanged": [path],
     "new": [path], "not compared": [path]} for every file under results/ that differs from ref."""
     out = {"real": [], "timing": [], "unchanged": [], "new": [], "not compared": []}
     for path in changed_files(ref):
@@ -154,10 +210,11 @@ def classify(ref: str = "HEAD") -> Dict[str, list]:
             out["not compared"].append(path)
         else:
             timing, real = compare_text(suffix, old, file.read_text(errors="replace"))
+            roundoff = real.pop(ROUNDOFF_KEY, 0)
             if real:
                 out["real"].append((path, real))
-            elif timing:
-                out["timing"].append((path, timing))
+            elif timing or roundoff:
+                out["timing"].append((path, timing + roundoff))
             else:
                 out["unchanged"].append(path)  # only bookkeeping or formatting moved
     return out
@@ -173,7 +230,7 @@ def report(found: Dict[str, list], ref: str) -> str:
         if found[key]:
             lines.append(f"{label} ({len(found[key])}): " + ", ".join(found[key]))
     if found["timing"]:
-        lines.append(f"timings only ({len(found['timing'])} files, "
+        lines.append(f"timings and round-off only ({len(found['timing'])} files, "
                      f"{sum(n for _, n in found['timing'])} values): " + ", ".join(p for p, _ in found["timing"]))
     if found["unchanged"]:
         lines.append(f"bookkeeping only (commits in provenance lines; {len(found['unchanged'])}): "
@@ -199,7 +256,7 @@ def one_line(ref: str = "HEAD") -> str:
 
 
 def restore(found: Dict[str, list], ref: str) -> List[str]:
-    """Checks out again the files whose changes are timings or bookkeeping alone."""
+    """Checks out again the files whose changes are timings, round-off or bookkeeping alone."""
     paths = [p for p, _ in found["timing"]] + found["unchanged"]
     if paths:
         _git("checkout", ref, "--", *paths)

@@ -6,15 +6,19 @@
 //                 element; for ANP including its nodal-pressure pre-pass, for assembled linear
 //                 elements the rows of every node);
 //   BM_NodalForces  the element phase and the nodal sums: the complete internal forces, per
-//                 element of each kind (what a linear element costs against a TLED one);
+//                 element of each kind (what a linear element costs against a TLED one); both
+//                 also for the r = 0.5 split (partition 15), which the two uniform ones bracket;
 //   BM_LinearRows the assembled linear rows alone, streamed and cache-resident, with the engine's
 //                 kernel and the portable one;
 //   BM_LinearRowsMemoryFloor  reading the rows' stored values once, with no arithmetic;
 //   BM_LinearRowsSingleValues the rows' product with the stored values rounded to single
-//                 precision (a measurement of that option, not something the engine does);
+//                 precision (the engine's solver.linear_precision "single");
 //   BM_LinearRowsInLanes  the rows vectorised the other way (eight rows in the lanes, hardware
 //                 gathers of the displacements), against the engine's kernel;
-//   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic.
+//   BM_MemoryFloorKernel  the same loads and stores as a kernel with almost no arithmetic;
+//   BM_HybridSpeedUp  explicit steps, one thread, at linear shares r = 0, 0.25, 0.5, 0.75, 1 with
+//                 the linear rows in double and in single precision (solver.linear_precision):
+//                 000 Table 1's speed-up against all TLED.
 // Scene: bottom fixed, the top-centre node pushed down (the paper's error scene, Fig. 10).
 #include <benchmark/benchmark.h>
 
@@ -57,7 +61,7 @@ std::vector<ElementKind> partition(int code) {
   if (code == 4) spec.uniform_element = ElementKind::anp;
   if (code >= 10) {
     spec.kind = hybrid::PartitionKind::linear_fraction;
-    spec.linear_fraction = (code - 10) / 10.0;
+    spec.linear_fraction = code >= 100 ? (code - 100) / 100.0 : (code - 10) / 10.0;
   }
   return hybrid::make_partition(m, spec);
 }
@@ -70,9 +74,12 @@ fem::LinearForces linear_forces(int code) {
   return code == 5 ? fem::LinearForces::per_element : fem::LinearForces::assembled;
 }
 
-fem::ElementSet element_set(int code, int tile_nodes = 128) {
-  return fem::ElementSet(paper_mesh(), partition(code), fem::Material::make(kPaper, form(code)), tile_nodes,
-                         linear_forces(code));
+fem::ElementSet element_set(int code, int tile_nodes = 128,
+                            fem::LinearPrecision precision = fem::LinearPrecision::double_precision) {
+  fem::ElementSet set(paper_mesh(), partition(code), fem::Material::make(kPaper, form(code)), tile_nodes,
+                      linear_forces(code));
+  set.set_linear_precision(precision);
+  return set;
 }
 
 // A deformed state: a 20 % shear with a 30° rotation, so the corotational polar decomposition
@@ -90,9 +97,10 @@ std::vector<double> deformed_state() {
 
 // Explicit steps of one partition: steps/s, ns per element of each kind and per node.
 void run_steps(benchmark::State& state, int code, int threads, bool skip_held_nodes,
-               int energy_interval = kStepsPerIteration) {
+               int energy_interval = kStepsPerIteration,
+               fem::LinearPrecision precision = fem::LinearPrecision::double_precision) {
   const auto& m = paper_mesh();
-  fem::ElementSet elements = element_set(code);
+  fem::ElementSet elements = element_set(code, 128, precision);
   dynamics::ExplicitOptions opt;
   opt.dt = 0.9 * dynamics::critical_time_step(m, kPaper).dt;
   opt.steps = kStepsPerIteration;
@@ -136,6 +144,21 @@ void steps_args(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_Steps)->Apply(steps_args)->ArgNames({"partition", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
 
+// 000 Table 1's speed-up: one thread, linear share r = (partition − 100) / 100 (the linear elements
+// farthest from the top centre), the linear rows' values in double (single 0) or single precision
+// (single 1). r = 0 is the all-TLED reference (no rows: precision does not apply).
+void BM_HybridSpeedUp(benchmark::State& state) {
+  run_steps(state, static_cast<int>(state.range(0)), 1, true, kStepsPerIteration,
+            state.range(1) != 0 ? fem::LinearPrecision::single_precision : fem::LinearPrecision::double_precision);
+}
+void hybrid_args(benchmark::internal::Benchmark* b) {
+  b->Args({100, 0});
+  for (int code : {125, 150, 175, 200})
+    for (int single : {0, 1}) b->Args({code, single});
+}
+BENCHMARK(BM_HybridSpeedUp)->Apply(hybrid_args)->ArgNames({"partition", "single"})->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 // The same steps with the held (fixed) nodes updated like the others (skip 0) and left out of
 // the node update (skip 1, the engine's default): the bench scene fixes the bottom layer.
 void BM_HeldNodes(benchmark::State& state) {
@@ -154,11 +177,12 @@ void BM_Kernel(benchmark::State& state) {
     elements.compute(u.data(), st);
     benchmark::DoNotOptimize(st.min_j);
   }
+  if (elements.assembled_linear()) state.counters["linear_blocks"] = elements.linear_rows().num_blocks();
   // Elements per second; nanoseconds per element = 1e9 / elements_per_s.
   state.counters["elements_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * paper_mesh().num_tets(),
                                                         benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Kernel)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Arg(15)->Unit(benchmark::kMicrosecond);
 
 // The complete internal nodal forces from the displacements (element phase and the nodal sums
 // of 000 eq. 23), all elements of one kind: the per-element cost the kinds compare by, since an
@@ -177,7 +201,7 @@ void BM_NodalForces(benchmark::State& state) {
   state.counters["elements_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * paper_mesh().num_tets(),
                                                         benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_NodalForces)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NodalForces)->ArgName("partition")->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Arg(15)->Unit(benchmark::kMicrosecond);
 
 // The assembled linear rows of the paper mesh, all nodes once (as in BM_Kernel/partition:2), and
 // the same number of row products over the first eighth of the nodes eight times, whose blocks
@@ -235,7 +259,6 @@ void BM_LinearRowsMemoryFloor(benchmark::State& state) {
 }
 BENCHMARK(BM_LinearRowsMemoryFloor)->Unit(benchmark::kMicrosecond);
 
-#ifdef SOFTSIM_ROWS_AVX512
 // The largest difference between forces `f` and the engine's rows' product at `u`, relative to
 // the largest of the latter: what another evaluation of the rows changes.
 double difference_to_rows(const fem::LinearStiffnessRows& rows, const std::vector<double>& u,
@@ -252,40 +275,31 @@ double difference_to_rows(const fem::LinearStiffnessRows& rows, const std::vecto
   return difference / largest;
 }
 
-// What single-precision stiffness values would buy: the engine's kernel (rows_avx512::row) over
-// the same blocks with each value stored as a float (the first eight of a block in 32 bytes,
-// widened by one conversion), so the rows stream 45 % of the bytes. The engine keeps double
-// precision (the paper's benchmark is in double precision); this measures the option. Counter:
-// the largest force difference to the double-precision rows relative to the largest force (the
-// price in accuracy).
+// What single-precision stiffness values buy (LinearPrecision::single_precision, the engine's
+// solver.linear_precision "single"): the engine's kernel over the same blocks with each value
+// stored as a float (the first eight of a block in 32 bytes, widened by one conversion), so the
+// rows stream 45 % of the bytes. Counter: the largest force difference to the double-precision
+// rows relative to the largest force (the price in accuracy).
 void BM_LinearRowsSingleValues(benchmark::State& state) {
   const auto& m = paper_mesh();
   const fem::LinearStiffnessRows rows(m, std::vector<ElementKind>(m.num_tets(), ElementKind::linear),
                                       fem::Material::make(kPaper, material::NeoHookeanForm::paper));
-  const int n = m.num_nodes(), blocks = rows.num_blocks();
-  std::vector<int> first(n + 1, blocks), neighbour(blocks);
-  fem::AlignedVector<float> values(8 * static_cast<std::size_t>(blocks));
-  std::vector<float> k22(blocks);
-  for (int a = 0; a < n; ++a) first[a] = rows.first_block(a);
-  for (int p = 0; p < blocks; ++p) {
-    neighbour[p] = 3 * rows.column_node(p);
-    for (int q = 0; q < 8; ++q) values[8 * static_cast<std::size_t>(p) + q] = static_cast<float>(rows.value(p, q / 3, q % 3));
-    k22[p] = static_cast<float>(rows.value(p, 2, 2));
-  }
+  fem::LinearStiffnessRows single = rows;
+  single.set_precision(fem::LinearPrecision::single_precision);
+  std::vector<int> nodes(m.num_nodes());
+  for (int a = 0; a < m.num_nodes(); ++a) nodes[a] = a;
   const std::vector<double> u = deformed_state();
   std::vector<double> f(u.size());
   for (auto _ : state) {
-    for (int a = 0; a < n; ++a)
-      fem::rows_avx512::row(values.data() + 8 * static_cast<std::size_t>(first[a]), k22.data() + first[a],
-                            neighbour.data() + first[a], first[a + 1] - first[a], u.data(), f.data() + 3 * a);
+    single.multiply_rows(nodes.data(), nodes.data() + nodes.size(), u.data(), f.data());
     benchmark::DoNotOptimize(f.data());
   }
+  const double blocks = rows.num_blocks();
   state.counters["max_rel_force_error"] = difference_to_rows(rows, u, f);
-  state.counters["bytes"] = static_cast<double>(values.size() * sizeof(float) + k22.size() * sizeof(float) +
-                                                neighbour.size() * sizeof(int) + first.size() * sizeof(int));
+  state.counters["bytes"] = blocks * (9 * sizeof(float) + sizeof(int)) + (m.num_nodes() + 1) * sizeof(int);
 }
 BENCHMARK(BM_LinearRowsSingleValues)->Unit(benchmark::kMicrosecond);
-#endif
+
 
 #ifdef SOFTSIM_ROWS_AVX512
 // The other way to vectorise the rows, measured against the engine's: eight rows at once, one

@@ -178,6 +178,7 @@ json resolved(const hybrid::DhdConfig& c) {
             {"energy_interval", e.energy_interval},
             {"energy_growth_limit", e.energy_growth_limit},
             {"contact_search", e.contact_search ? "grid" : "all"},
+            {"linear_precision", fem::linear_precision_name(e.linear_precision)},
             {"increments", st.increments},
             {"max_iterations", st.max_iterations},
             {"tolerance", st.tolerance}}},

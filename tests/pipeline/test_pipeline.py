@@ -139,7 +139,7 @@ def test_kernel_ratios_are_relative_to_tled_and_judge_the_target(tmp_path):
         "BM_LinearRowsSingleValues": 33.0, "BM_LinearRowsInLanes": 47.0})))
     assert "| linear, assembled rows (the engine's default) | 0.45 |" in text
     assert "| the assembled rows' product alone (without the nodal sums) | 0.42 |" in text
-    assert "single-precision stored values (a measured option, not used by the engine) | 0.33 |" in text
+    assert 'single-precision stored values (the option solver.linear_precision "single") | 0.33 |' in text
     assert "with gathered displacements (a measured alternative, not used by the engine) | 0.47 |" in text
     assert "| memory floor of the assembled rows (reading their stored values once, no arithmetic) | 0.29 |" in text
     assert "Measured for the nodal forces: 0.45× — not met; reading the assembled rows once" in text

@@ -101,6 +101,8 @@ class ElementSet {
   // Whether the linear elements' forces come from assembled rows (and how many blocks they have).
   bool assembled_linear() const { return !linear_rows_.empty(); }
   const LinearStiffnessRows& linear_rows() const { return linear_rows_; }
+  // The values the assembled linear rows stream (linear_rows.hpp); no effect without them.
+  void set_linear_precision(LinearPrecision p) { linear_rows_.set_precision(p); }
 
   // Node phase: the internal force on `node` (000 eq. 23), summed in a fixed order: its
   // incident corner forces, then its linear row force.

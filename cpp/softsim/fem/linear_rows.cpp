@@ -8,6 +8,10 @@
 
 namespace softsim::fem {
 
+const char* linear_precision_name(LinearPrecision p) {
+  return p == LinearPrecision::single_precision ? "single" : "double";
+}
+
 LinearStiffnessRows::LinearStiffnessRows(const mesh::TetMesh& mesh, const std::vector<ElementKind>& kinds,
                                          const Material& material) {
   const int n = mesh.num_nodes();
@@ -56,8 +60,26 @@ void LinearStiffnessRows::add_element(const mesh::TetMesh& mesh, int e, const Ma
           else
             block[kBlockSlot[row][col]] += k;
         }
+      if (precision_ == LinearPrecision::single_precision) round_block(p);
     }
   }
+}
+
+void LinearStiffnessRows::round_block(std::size_t p) {
+  for (int q = 0; q < 8; ++q) block_single_[8 * p + q] = static_cast<float>(block_[8 * p + q]);
+  k22_single_[p] = static_cast<float>(k22_[p]);
+}
+
+void LinearStiffnessRows::set_precision(LinearPrecision precision) {
+  precision_ = precision;
+  if (precision == LinearPrecision::double_precision) {
+    AlignedVector<float>().swap(block_single_);
+    AlignedVector<float>().swap(k22_single_);
+    return;
+  }
+  block_single_.resize(block_.size());
+  k22_single_.resize(k22_.size());
+  for (std::size_t p = 0; p < k22_.size(); ++p) round_block(p);
 }
 
 bool LinearStiffnessRows::vectorised() {
@@ -74,15 +96,16 @@ namespace {
 // f_r = Σ_p Σ_c K_rc u_c with the values found through `slot` (the storage order of kBlockSlot).
 // Its sums run in another order than the vector kernels', so they differ in the last bits (each
 // is the same for any thread count).
-[[gnu::always_inline]] inline void portable_row(const double* block, const double* k22, const int* neighbour,
+template <class Value>
+[[gnu::always_inline]] inline void portable_row(const Value* block, const Value* k22, const int* neighbour,
                                                 int count, const double* u, double* f, const int (&slot)[3][3]) {
   double f0 = 0, f1 = 0, f2 = 0;
   for (int p = 0; p < count; ++p) {
     const double* x = u + neighbour[p];
-    const double* k = block + 8 * p;
-    f0 += k[slot[0][0]] * x[0] + k[slot[0][1]] * x[1] + k[slot[0][2]] * x[2];
-    f1 += k[slot[1][0]] * x[0] + k[slot[1][1]] * x[1] + k[slot[1][2]] * x[2];
-    f2 += k[slot[2][0]] * x[0] + k[slot[2][1]] * x[1] + k22[p] * x[2];
+    const Value* k = block + 8 * p;
+    f0 += double(k[slot[0][0]]) * x[0] + double(k[slot[0][1]]) * x[1] + double(k[slot[0][2]]) * x[2];
+    f1 += double(k[slot[1][0]]) * x[0] + double(k[slot[1][1]]) * x[1] + double(k[slot[1][2]]) * x[2];
+    f2 += double(k[slot[2][0]]) * x[0] + double(k[slot[2][1]]) * x[1] + double(k22[p]) * x[2];
   }
   f[0] = f0;
   f[1] = f1;
@@ -96,32 +119,41 @@ namespace {
 // lambdas, whose distinct types give one instantiation each (a function pointer would give one
 // instantiation for both and a call per row), and the kernels are forced inline (GCC judges
 // them too large to inline on its own).
-template <class Row>
-void LinearStiffnessRows::for_each_row(const int* nodes_begin, const int* nodes_end, const double* u, double* f,
-                                       Row row) const {
+template <class Value, class Row>
+void LinearStiffnessRows::for_each_row(const Value* block, const Value* k22, const int* nodes_begin,
+                                       const int* nodes_end, const double* u, double* f, Row row) const {
   for (const int* n = nodes_begin; n != nodes_end; ++n) {
     const int begin = row_begin_[*n], count = row_begin_[*n + 1] - begin;
     if (count > 0)
-      row(block_.data() + 8 * static_cast<std::size_t>(begin), k22_.data() + begin, neighbour_.data() + begin, count,
-          u, f + 3 * static_cast<std::size_t>(*n));
+      row(block + 8 * static_cast<std::size_t>(begin), k22 + begin, neighbour_.data() + begin, count, u,
+          f + 3 * static_cast<std::size_t>(*n));
   }
 }
 
-void LinearStiffnessRows::multiply_rows(const int* nodes_begin, const int* nodes_end, const double* u, double* f,
-                                        Kernel kernel) const {
+template <class Value>
+void LinearStiffnessRows::multiply_rows_of(const Value* block, const Value* k22, const int* nodes_begin,
+                                           const int* nodes_end, const double* u, double* f, Kernel kernel) const {
 #if defined(SOFTSIM_ROWS_AVX512)
   if (kernel == Kernel::best)
-    return for_each_row(nodes_begin, nodes_end, u, f,
+    return for_each_row(block, k22, nodes_begin, nodes_end, u, f,
                         [](auto... row) __attribute__((always_inline)) { rows_avx512::row(row...); });
 #elif defined(SOFTSIM_ROWS_AVX2)
   if (kernel == Kernel::best)
-    return for_each_row(nodes_begin, nodes_end, u, f,
+    return for_each_row(block, k22, nodes_begin, nodes_end, u, f,
                         [](auto... row) __attribute__((always_inline)) { rows_avx2::row(row...); });
 #else
   (void)kernel;
 #endif
-  for_each_row(nodes_begin, nodes_end, u, f,
+  for_each_row(block, k22, nodes_begin, nodes_end, u, f,
                [](auto... row) __attribute__((always_inline)) { portable_row(row..., kBlockSlot); });
+}
+
+void LinearStiffnessRows::multiply_rows(const int* nodes_begin, const int* nodes_end, const double* u, double* f,
+                                        Kernel kernel) const {
+  if (precision_ == LinearPrecision::single_precision)
+    multiply_rows_of(block_single_.data(), k22_single_.data(), nodes_begin, nodes_end, u, f, kernel);
+  else
+    multiply_rows_of(block_.data(), k22_.data(), nodes_begin, nodes_end, u, f, kernel);
 }
 
 }  // namespace softsim::fem

@@ -23,6 +23,14 @@
 //
 // Every row is summed in one fixed order (its blocks by ascending neighbour), whoever
 // evaluates it, so results are bit-identical for any thread count.
+//
+// Precision (LinearPrecision): the product is bound by the bytes of its blocks, not by its
+// arithmetic, whenever they stream from a shared cache or memory (cpp/apps/dhd_sim.md, speed).
+// On request the rows are streamed as single-precision values (a copy of the blocks rounded to
+// float: 40 instead of 76 bytes per block with its index) and multiplied in double precision
+// against the double displacements, accumulating in double; the double blocks are kept, so a
+// removed element leaves the exact sums and only the touched blocks are rounded again. The
+// default is double, bit for bit the product of the double blocks.
 #include <vector>
 
 #include "softsim/fem/aligned.hpp"
@@ -32,6 +40,11 @@
 #include "softsim/mesh/tet_mesh.hpp"
 
 namespace softsim::fem {
+
+// The values the linear rows stream: the assembled double blocks, or those rounded to float
+// (the product still sums in double). `solver.linear_precision` in dhd_sim's config.
+enum class LinearPrecision { double_precision, single_precision };
+const char* linear_precision_name(LinearPrecision p);
 
 class LinearStiffnessRows {
  public:
@@ -60,6 +73,11 @@ class LinearStiffnessRows {
     add_element(mesh, e, material, -1.0);
   }
 
+  // Which values multiply_rows streams (default double). Single precision rounds a copy of the
+  // blocks to float; double frees that copy.
+  void set_precision(LinearPrecision precision);
+  LinearPrecision precision() const { return precision_; }
+
   // Whether Kernel::best is a vector kernel (AVX-512 or AVX2) in this build.
   static bool vectorised();
 
@@ -78,14 +96,23 @@ class LinearStiffnessRows {
 #endif
 
   void add_element(const mesh::TetMesh& mesh, int e, const Material& material, double sign);
+  // Rounds block p's double values into the single-precision copy.
+  void round_block(std::size_t p);
 
-  template <class Row>
-  void for_each_row(const int* nodes_begin, const int* nodes_end, const double* u, double* f, Row row) const;
+  template <class Value, class Row>
+  void for_each_row(const Value* block, const Value* k22, const int* nodes_begin, const int* nodes_end,
+                    const double* u, double* f, Row row) const;
+  template <class Value>
+  void multiply_rows_of(const Value* block, const Value* k22, const int* nodes_begin, const int* nodes_end,
+                        const double* u, double* f, Kernel kernel) const;
 
   std::vector<int> row_begin_;   // per node: first block of its row (n + 1 values)
   std::vector<int> neighbour_;   // per block: 3 × the column node
   AlignedVector<double> block_;  // 8 per block: every K_rc but K_22, in the order of kBlockSlot
   std::vector<double> k22_;      // per block: K_22
+  LinearPrecision precision_ = LinearPrecision::double_precision;
+  AlignedVector<float> block_single_;  // with single precision: block_ rounded to float
+  AlignedVector<float> k22_single_;    // with single precision: k22_ rounded to float
 };
 
 }  // namespace softsim::fem

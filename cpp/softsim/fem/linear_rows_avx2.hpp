@@ -10,6 +10,12 @@
 
 namespace softsim::fem::rows_avx2 {
 
+// A block's two 4-wide halves and its K_22 as doubles, from double or single-precision storage.
+inline __m256d load_half(const double* p) { return _mm256_load_pd(p); }
+inline __m256d load_half(const float* p) { return _mm256_cvtps_pd(_mm_load_ps(p)); }
+inline __m128d load_k22(const double* p) { return _mm_load_sd(p); }
+inline __m128d load_k22(const float* p) { return _mm_set_sd(*p); }
+
 // f[0..2] = Σ_p K_p u_{neighbour[p]} over the row's `count` blocks. A neighbour's displacement
 // is read by two broadcast loads, (u0 u1 u0 u1) and (u2 u2 u2 u2), and one blend makes
 // (u0 u1 u2 u2): the first half of the block multiplies the former, the second half the
@@ -18,8 +24,10 @@ namespace softsim::fem::rows_avx2 {
 // iteration into two sets of accumulators (the multiply-add latency would otherwise bound the
 // loop). The row's three sums are formed once at its end, from the lanes a of the first and b
 // of the second half: f0 = a0 + a1 + b2, f1 = a2 + a3 + b3, f2 = b0 + b1 + K_22 u2. Forced
-// inline: the caller's row loop must not pay a call per row.
-[[gnu::always_inline]] inline void row(const double* block, const double* k22, const int* neighbour, int count,
+// inline: the caller's row loop must not pay a call per row. The stored values may be double or
+// float (LinearPrecision); the arithmetic is in double precision either way.
+template <class Value>
+[[gnu::always_inline]] inline void row(const Value* block, const Value* k22, const int* neighbour, int count,
                                        const double* u, double* f) {
   __m256d a0 = _mm256_setzero_pd(), b0 = a0, a1 = a0, b1 = a0;
   __m128d c0 = _mm_setzero_pd(), c1 = c0;
@@ -27,9 +35,9 @@ namespace softsim::fem::rows_avx2 {
     const double* x = u + neighbour[p];
     const __m256d x01 = _mm256_broadcast_pd(reinterpret_cast<const __m128d*>(x));
     const __m256d x2 = _mm256_broadcast_sd(x + 2);
-    a = _mm256_fmadd_pd(_mm256_load_pd(block + 8 * p), x01, a);
-    b = _mm256_fmadd_pd(_mm256_load_pd(block + 8 * p + 4), _mm256_blend_pd(x01, x2, 0xC), b);
-    c = _mm_fmadd_sd(_mm_load_sd(k22 + p), _mm256_castpd256_pd128(x2), c);
+    a = _mm256_fmadd_pd(load_half(block + 8 * p), x01, a);
+    b = _mm256_fmadd_pd(load_half(block + 8 * p + 4), _mm256_blend_pd(x01, x2, 0xC), b);
+    c = _mm_fmadd_sd(load_k22(k22 + p), _mm256_castpd256_pd128(x2), c);
   };
   int p = 0;
   for (; p + 1 < count; p += 2) {

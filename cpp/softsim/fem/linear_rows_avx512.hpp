@@ -1,7 +1,7 @@
 #pragma once
-// The AVX-512 kernel of one assembled linear row (linear_rows.hpp): the engine's, and the one
-// bench_dhd runs over single-precision stored values to measure that option. It is templated on
-// the type the block values are stored in; the arithmetic is in double precision either way.
+// The AVX-512 kernel of one assembled linear row (linear_rows.hpp), over double or (with
+// LinearPrecision::single_precision) float stored values. It is templated on the type the block
+// values are stored in; the arithmetic is in double precision either way.
 // Defines SOFTSIM_ROWS_AVX512 where the build targets AVX-512 (with its 256-bit forms).
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 #include <immintrin.h>

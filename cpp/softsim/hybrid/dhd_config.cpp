@@ -365,7 +365,8 @@ void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   c.static_solver = s->get_choice("kind", {"explicit", "static"}, c.static_solver ? "static" : "explicit") == "static";
   // Keys of the other solver kind are refused rather than silently ignored.
   const std::set<std::string> explicit_keys = {"steps", "dt", "safety_factor", "force_dt", "energy_interval",
-                                               "energy_growth_limit", "dt_check_interval", "contact_search", "critical_step"};
+                                               "energy_growth_limit", "dt_check_interval", "contact_search", "critical_step",
+                                               "linear_precision"};
   const std::set<std::string> static_keys = {"increments", "max_iterations", "tolerance"};
   for (const auto& key : s->keys())
     if ((c.static_solver && explicit_keys.count(key)) || (!c.static_solver && static_keys.count(key)))
@@ -393,6 +394,10 @@ void read_solver(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdConfig
   s->require(e.energy_interval >= 1, "energy_interval", "a positive step count");
   e.energy_growth_limit = s->get_positive("energy_growth_limit", e.energy_growth_limit);
   e.contact_search = s->get_choice("contact_search", {"grid", "all"}, "grid") == "grid";
+  e.linear_precision = s->get_choice("linear_precision", {"double", "single"},
+                                     fem::linear_precision_name(e.linear_precision)) == "single"
+                           ? fem::LinearPrecision::single_precision
+                           : fem::LinearPrecision::double_precision;
   s->require(e.energy_growth_limit >= 1.0, "energy_growth_limit", "a factor of at least 1");
   dynamics::StaticOptions& st = c.static_options;
   st.increments = s->get_int32("increments", st.increments);

@@ -11,6 +11,7 @@
 #include "softsim/dynamics/scene.hpp"
 #include "softsim/dynamics/static_solver.hpp"
 #include "softsim/fem/constitutive.hpp"
+#include "softsim/fem/linear_rows.hpp"
 #include "softsim/hybrid/partition.hpp"
 #include "softsim/hybrid/cut_config.hpp"
 #include "softsim/io/json_reader.hpp"
@@ -38,6 +39,8 @@ struct ExplicitConfig {
   // step; the same results, slower).
   bool contact_search = true;
   CriticalStepMethod critical_step = CriticalStepMethod::altitude;
+  // The values the assembled linear rows stream: "double" (default) or "single" (fem/linear_rows.hpp).
+  fem::LinearPrecision linear_precision = fem::LinearPrecision::double_precision;
 };
 
 struct OutputConfig {

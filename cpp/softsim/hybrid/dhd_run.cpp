@@ -334,6 +334,7 @@ std::vector<BenchRun> run_bench(const mesh::TetMesh& mesh, const DhdConfig& c) {
   for (const Variant& v : variants) {
     // One element set per partition: every run recomputes its state from u0.
     fem::ElementSet elements(mesh, make_partition(mesh, v.spec), c.material);
+    elements.set_linear_precision(c.explicit_solver.linear_precision);
     for (int threads : c.bench.threads) {
       dynamics::ExplicitOptions o;
       o.dt = dt;

@@ -54,6 +54,7 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     elements_ = std::make_unique<fem::ElementSet>(
         *mesh_, kinds_, config_.material, 128,
         config_.separates ? fem::LinearForces::per_element : fem::LinearForces::assembled);
+    elements_->set_linear_precision(config_.explicit_solver.linear_precision);
     // The critical step of the deformed mesh: TLED and ANP stiffness follows the deformation,
     // small-strain and corotational stiffness does not. Nor does an inversion-robust law's in the
     // sense of 000 eq. 34: its tangent on the reference gradients stays bounded as an element
