@@ -14,6 +14,10 @@ if not BIN.is_absolute():
 sys.path.insert(0, str(ROOT))
 
 
+def pytest_configure(config):
+    config.addinivalue_line("markers", "slow: runs the pipeline on several variants (about a minute)")
+
+
 def tool(name: str) -> Path:
     path = BIN / name
     if not path.exists():
