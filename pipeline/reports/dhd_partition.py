@@ -13,6 +13,8 @@ error budget (params "budgets", fractions) the table gives the largest speed-up 
 each family reaches without exceeding it, interpolating linearly between shares. Times per step
 come from the cost model of dhd_common.cost_model (params "timing" names the dhd_timing stage)."""
 
+import json
+
 from pipeline import plots
 from pipeline.reports import dhd_common as common
 from pipeline.stages.machine_load import busy_note
@@ -50,18 +52,47 @@ def family_rows(ctx, stages):
     groups = {}
     for g in rows:
         if 0 < g["cheap_elements"] < g["elements"]:
-            groups.setdefault((g["strategy"], g["cheap_kind"]), {}).setdefault(round(g["applied"], 12), []).append(g)
-    keys = [k for k in FAMILY_ORDER if k in groups] + sorted(k for k in groups if k not in FAMILY_ORDER)
+            groups.setdefault(_family_key(g), {}).setdefault(round(g["applied"], 12), []).append(g)
+    rank = {k: i for i, k in enumerate(FAMILY_ORDER)}
+    keys = sorted(groups, key=lambda k: (rank.get(k[:2], len(rank)), k))
+    labels = _family_labels(keys)
     out = {}
-    for strategy, kind in keys:
-        by_load = groups[(strategy, kind)]
+    for key in keys:
+        strategy, kind, _ = key
+        by_load = groups[key]
         for load, group in by_load.items():
             for end in (ends.get((load, None)), ends.get((load, kind))):
                 if end is not None:
                     group.append(end)
             by_load[load] = sorted(group, key=lambda x: x["r"])
-        out[family_label(strategy, kind)] = by_load
+        out[labels[key]] = by_load
     return out
+
+
+def _family_key(g):
+    """(strategy, cheap kind, the rest of the partition config but the share): runs of one family
+    differ in r only."""
+    rest = {k: v for k, v in (g["run"].config.get("partition") or {}).items() if k != "linear_fraction"}
+    return (g["strategy"], g["cheap_kind"], json.dumps(rest, sort_keys=True))
+
+
+def _family_labels(keys) -> dict:
+    """A label per family naming what its config asks for: "distance, linear", with the settings
+    that tell it apart from a family of the same strategy and kind ("distance, linear (distance
+    geodesic)") so that no two families share a label."""
+    labels = {}
+    for key in keys:
+        strategy, kind, rest = key
+        twins = [k for k in keys if k[:2] == (strategy, kind)]
+        label = family_label(strategy, kind)
+        if len(twins) > 1:
+            mine = json.loads(rest)
+            others = [json.loads(k[2]) for k in twins if k != key]
+            differ = sorted(n for n in set(mine) | {n for o in others for n in o}
+                            if any(o.get(n) != mine.get(n) for o in others))
+            label += " (" + ", ".join(f"{n.replace('_', ' ')} {mine.get(n, 'default')}" for n in differ) + ")"
+        labels[key] = label
+    return labels
 
 
 def shares_at(data, load):
@@ -100,6 +131,23 @@ def best_speedup_within(points, budget):
     if len(points) == 1 and points[0][1] <= budget:
         best = points[0][0]
     return best
+
+
+def layer_jump(data, loads):
+    """How much the layer split's error grows from its largest mixed share to all-cheap, the step
+    at which the top layer under the tool turns cheap too: the smallest such factor over the loads
+    (None without a layer family)."""
+    jumps = []
+    for label, fam in data.items():
+        if not label.startswith("layer,"):
+            continue
+        for load in loads:
+            g = fam.get(load, [])
+            mixed = [x for x in g if 0 < x["cheap_elements"] < x["elements"]]
+            full = [x for x in g if x["tled_elements"] == 0]
+            if mixed and full and mixed[-1]["error"]["rel_mean"] > 0:
+                jumps.append(full[0]["error"]["rel_mean"] / mixed[-1]["error"]["rel_mean"])
+    return min(jumps) if jumps else None
 
 
 def report(ctx):
@@ -206,5 +254,6 @@ def report(ctx):
     lines.append("Plot: [dhd/partition_error.png](dhd/partition_error.png).\n")
     lines.append(" ".join(words) + "\n")
     best = max(total_wins, key=total_wins.get) if total_wins else None
-    facts = {"best_family": best, "best_wins": total_wins.get(best), "shares": total_shares}
+    facts = {"best_family": best, "best_wins": total_wins.get(best), "shares": total_shares,
+             "best_strategy": best.split(",")[0] if best else None, "layer_jump": layer_jump(data, loads)}
     common.write_section(ctx, "partition", "\n".join(lines), facts)
