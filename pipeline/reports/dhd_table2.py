@@ -196,7 +196,7 @@ def report(ctx):
                          + words_mod.transient_why(moving.get(a0), tolerance, settled_share))
             transient_facts = {"alpha": a0, "grows": t_grow, "moving": moving.get(a0) is not None
                                and moving[a0] > tolerance}
-    lines = ["### Tables 2–3: error against the share of linear elements\n"] + md_tables
+    lines = [f"### Tables 2–3: error against the share of {cheap} elements\n"] + md_tables
     if transient_md:
         lines.append(transient_md)
     lines.append("Plot: [dhd/table2_3_error.png](dhd/table2_3_error.png); every normalisation: "
