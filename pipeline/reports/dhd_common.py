@@ -391,13 +391,14 @@ def _table1_verdict(t1: dict, rate0, agree: list, differ: list, why: list) -> No
     """The Table 1 part of the verdict: every claim from the measured ratios, and each one carries
     the timing's busy-machine note (dhd_table1's "busy_note") when the sitting was disturbed."""
     busy = t1.get("busy_note") or ""
-    note = f" {busy}" if busy else ""
+    first = f" {busy}" if busy else ""
+    note = f" {busy.split(':')[0]})" if ":" in busy else first
     s50, p50 = t1.get("speedup_50_ours"), t1.get("speedup_50_paper")
     if s50 is not None and p50:
         if s50 > 1.02 and p50 > 1.02:
-            agree.append(f"linear elements make the explicit step faster{note}")
+            agree.append(f"linear elements make the explicit step faster{first}")
         elif p50 > 1.02:
-            differ.append(f"linear elements do not make our explicit step faster, unlike the paper's{note}")
+            differ.append(f"linear elements do not make our explicit step faster, unlike the paper's{first}")
         if abs(s50 / p50 - 1.0) > 0.2:
             differ.append(f"at r = 50 % our step is {_speed_words(s50)}, against the paper's {_f(p50, 3)}{note}")
         else:
@@ -519,12 +520,16 @@ def split_words(rows) -> str:
     """The split the hybrid runs of `rows` asked for, in words, from their configs: "layer split
     (the lowest elements linear, 000 Fig. 10)"; every distinct (strategy, distance measure, cheap
     kind) named once."""
+    return split_phrase([(x["strategy"], x["run"].config.get("partition"), x["cheap_kind"]) for x in rows
+                         if 0 < x["cheap_elements"] < x["elements"]])
+
+
+def split_phrase(splits) -> str:
+    """[(strategy, partition config, cheap kind)] in words, each distinct split once."""
     kinds = []
-    for x in rows:
-        if not 0 < x["cheap_elements"] < x["elements"]:
-            continue
-        measure = (x["run"].config.get("partition") or {}).get("distance", "euclidean")
-        key = (x["strategy"], measure if x["strategy"] == "distance" else None, x["cheap_kind"])
+    for strategy, partition, cheap in splits:
+        measure = (partition or {}).get("distance", "euclidean")
+        key = (strategy, measure if strategy == "distance" else None, cheap)
         if key not in kinds:
             kinds.append(key)
     out = []

@@ -55,6 +55,8 @@ def report(ctx):
     f0 = paper_rate.get(0)
     # Every speed figure below carries this note when the sitting was disturbed.
     busy = busy_note(timing.get("machine"))
+    # the full conditions once per paragraph, then the short form
+    again = busy.split(":")[0] + ")" if ":" in busy else busy
     body = []
     for x in rows_data:
         run = x["run"]
@@ -69,9 +71,12 @@ def report(ctx):
                "real-time factor (simulated s per s)", "frame rate (paper, Hz)", "speed-up vs r = 0 (paper)"]
     first = runs[0]
     n = sum(first["counts"].values())
+    mixed = [x["run"] for x in rows_data if 0 < x["r"] < 1]
+    split = common.split_phrase([(d["strategy"], run["partition"], d["cheap_kind"]) for run in mixed
+                                 for d in [common.describe_partition(run["partition"], small_strain)]])
     caption = (f"**Table 1: speed against the share of linear elements**, {n} tets, one thread, "
                f"{first['steps']} steps per measurement, best of {timing['repeats']} interleaved repeats "
-               f"(the least disturbed; median beside it; {timing['cpu']}). Layer split (lowest elements linear). Equivalent frame rate: one "
+               f"(the least disturbed; median beside it; {timing['cpu']}). Mixed runs: {split}. Equivalent frame rate: one "
                "explicit step per frame, rendering excluded (the paper does not say how many steps make "
                "a frame). Real-time factor: simulated time advanced per wall-clock second (steps/s × Δt, "
                f"Δt = {fmt(first['dt'] * 1e3)} ms). The paper's columns are copied from 000 Table 1."
@@ -139,19 +144,19 @@ def report(ctx):
                      + (f" {busy}" if busy else "")
                      + (f"; the paper reports {fmt(p50)}/{fmt(f0)} = {fmt(p50 / f0, 3)}." if p50 and f0 else "."))
     words.append(f"All-TLED runs at {fmt(base, 4)} steps/s on one thread, i.e. {fmt(1e6 / base, 3)} µs per step "
-                 f"for {n} tets" + (f" {busy}" if busy else "") + (f" (the paper: {fmt(f0)} Hz)." if f0 else "."))
+                 f"for {n} tets" + (f" {again if at50 else busy}" if busy else "") + (f" (the paper: {fmt(f0)} Hz)." if f0 else "."))
     if c_ours is not None and c_paper is not None:
         words.append(f"Fitting t(r) = t(0)((1 − r) + c r) to the times per step gives c = {fmt(c_ours, 2)} for "
                      f"our engine (a linear element plus its share of the node work costs {fmt(c_ours, 2)} of a "
                      f"TLED one: {cheaper_or_dearer(c_ours)}) and c = {fmt(c_paper, 2)} for the paper's frame times"
-                     + (f" {busy}." if busy else "."))
+                     + (f" {again}." if busy else "."))
     if ns_tled and ns_lin:
         words.append(f"The element phase alone: {fmt(ns_tled, 3)} ns per TLED element and step, {fmt(ns_lin, 3)} ns "
                      f"per linear element (the assembled linear rows; ratio {fmt(ns_lin / ns_tled, 2)}: "
                      f"{cheaper_or_dearer(ns_lin / ns_tled)}); the node "
                      f"phase (gather and central-difference update) takes {fmt(node_ns, 3)} ns per node of an "
                      f"all-TLED mesh and {fmt(node_ns_linear, 3)} ns per node of an all-linear one, whose nodes "
-                     "have no corner forces to gather" + (f" {busy}." if busy else "."))
+                     "have no corner forces to gather" + (f" {again}." if busy else "."))
     if timing.get("binary_sha256") and (BIN / "dhd_sim").exists() and file_hash(BIN / "dhd_sim") != timing["binary_sha256"]:
         words.append("(Note: these timings were measured with an earlier build of dhd_sim.)")
     lines = ["### Table 1: speed against the share of linear elements\n", md,

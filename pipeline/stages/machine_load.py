@@ -106,30 +106,30 @@ def measure(take, log=print, cores=None):
     return result, rec
 
 
-def describe(rec) -> str:
-    """The measured conditions in words: "load 3.2 on 2 cores, steal 0 %, calibration +4 %"."""
+def describe(rec, only=None) -> str:
+    """The measured conditions in words: "load 3.2 on 2 cores, CPU steal 0 %, calibration kernel
+    +4 % after against before"; `only` keeps the named ones ("load", "steal", "calibration")."""
     loads = [x for x in (rec.get("load_before"), rec.get("load_after")) if x is not None]
     parts = []
-    if loads:
+    if loads and (only is None or "load" in only):
         parts.append(f"load {max(loads):.1f} on {rec['cores']} core{'s' if rec['cores'] != 1 else ''}")
-    if rec.get("steal_percent") is not None:
+    if rec.get("steal_percent") is not None and (only is None or "steal" in only):
         parts.append(f"CPU steal {rec['steal_percent']:.0f} %")
-    if rec.get("calibration_change") is not None:
+    if rec.get("calibration_change") is not None and (only is None or "calibration" in only):
         parts.append(f"calibration kernel {100 * rec['calibration_change']:+.0f} % after against before")
     return ", ".join(parts)
 
 
 def busy_note(rec) -> str:
     """What a report writes beside a speed verdict taken from this record: "" for an undisturbed
-    timing, the conditions for a flagged one, and a warning where the timing has no record."""
+    timing, what disturbed it for a flagged one, and a warning where the timing has no record."""
     if not rec:
         return "(machine load not recorded for this timing)"
     if not rec.get("flagged"):
         return ""
-    what = {"load": "a busy machine", "steal": "a machine whose CPU was stolen",
-            "calibration": "a machine whose speed changed during the measurement"}
-    kinds = " and ".join(what[r] for r in rec["disturbed"] if r in what) or "a disturbed machine"
-    return f"(timed on {kinds}: {describe(rec)}{', also on the retake' if rec.get('retaken') else ''})"
+    machine = "a busy machine" if "load" in rec["disturbed"] else "a disturbed machine"
+    return (f"(timed on {machine}: {describe(rec, rec['disturbed'])}"
+            f"{'; so was the retake' if rec.get('retaken') else ''})")
 
 
 def worst(records):
