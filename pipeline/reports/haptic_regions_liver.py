@@ -8,6 +8,7 @@ import numpy as np
 from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.reports.haptic_regions import errors, runs_of
+from pipeline.stages.machine_load import busy_note
 from pipeline.tables import write_table
 
 REGION_STAGES = ("condensed", "guyan", "exchange")
@@ -258,18 +259,26 @@ def summary_lines(rows, fine, realtime=()):
 
 
 def realtime_line(run):
-    """One served run: `haptic_sim serve` paced at 1 kHz, its round trips and compute per frame."""
+    """One served run: `haptic_sim serve` paced at its rate, its round trips and compute per frame;
+    the rate, duration and press from the run, the machine's load beside the figures."""
     p = run.payload
     rt = np.array(p["round_trip_seconds"])
     reg = p["regions"] or {}
+    rate = p.get("rate", 1000)
+    period_ms = 1e3 / rate
+    press = (run.config or {}).get("press", {})
+    held = (f"a press of {100 * press['depth']:g} cm over {press['ramp_time']:g} s, held"
+            if "depth" in press and "ramp_time" in press else "a press held")
     far = FAR.get(reg.get("secondary"), "") + (f" and {reg['modes']} modes" if reg.get("modes") else "")
-    return (f"Real-time loop (`haptic_sim serve` over a pipe, paced at 1 kHz for {len(rt) / 1000:g} s, a press "
-            f"held; radius {reg.get('radius', float('nan')):g} m, {far}, "
+    busy = busy_note(p.get("machine"))
+    return (f"Real-time loop (`haptic_sim serve` over a pipe, paced at {rate / 1000:g} kHz for {len(rt) / rate:g} s, "
+            f"{held}; radius {reg.get('radius', float('nan')):g} m, {far}, "
             f"{reg.get('precision', '')} precision, no pictures): round trip median {1e3 * np.median(rt):.3g} ms, "
-            f"p99 {1e3 * np.percentile(rt, 99):.3g} ms, max {1e3 * rt.max():.3g} ms; {int((rt > 1e-3).sum())} of "
-            f"{len(rt)} answers later than 1 ms; compute per frame p50 {1e3 * p['timing']['frame_seconds_p50']:.3g} ms, "
+            f"p99 {1e3 * np.percentile(rt, 99):.3g} ms, max {1e3 * rt.max():.3g} ms; {int((rt > 1.0 / rate).sum())} of "
+            f"{len(rt)} answers later than {period_ms:.3g} ms; compute per frame p50 "
+            f"{1e3 * p['timing']['frame_seconds_p50']:.3g} ms, "
             f"p99 {1e3 * p['timing']['frame_seconds_p99']:.3g} ms; {p['events']} events"
-            + set_up_words(rt, reg) + ".")
+            + set_up_words(rt, reg) + (f" {busy}" if busy else "") + ".")
 
 
 def set_up_words(rt, reg):

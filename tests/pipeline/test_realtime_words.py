@@ -1,0 +1,43 @@
+"""The served real-time runs are described by their own duration, rate and press, and carry the
+machine's load beside their figures."""
+import numpy as np
+
+from report_ctx import FakeContext, run
+from pipeline.reports import haptic_regions, haptic_regions_liver
+
+
+def served(seconds, rate, machine=None):
+    frames = int(seconds * rate)
+    rt = np.full(frames, 0.2 / rate)
+    rt[:3] = 2.0 / rate     # three late answers
+    payload = {"frames": frames, "rate": rate, "seconds": seconds, "round_trip_seconds": rt.tolist(),
+               "timing": {"frame_seconds_p50": 0.1 / rate, "frame_seconds_p99": 0.5 / rate, "deadline_misses": 0},
+               "regions": None, "solver": "whole_model", "model": {"tets": 100}, "substeps": 1, "events": 0,
+               "peak_force": 1.0, "machine": machine}
+    return run(payload, {"press": {"depth": 0.01, "ramp_time": 0.5}})
+
+
+BUSY = {"cores": 2, "load_before": 3.2, "load_after": 3.0, "steal_percent": 0.0, "calibration_before_s": 0.01,
+        "calibration_after_s": 0.01, "calibration_change": 0.0, "disturbed": ["load"], "retaken": True,
+        "flagged": True}
+
+
+def test_the_realtime_summary_gives_the_runs_duration_rate_and_load(tmp_path):
+    ctx = FakeContext(tmp_path, runs={"realtime_cube_whole": [served(10, 1000, BUSY)]})
+    rows = haptic_regions.realtime_rows(ctx)
+    text = haptic_regions.realtime_summary(rows)
+    assert "10 s at 1 kHz" in text and "60 s" not in text
+    assert "3 of 10000 answers later than 1 ms" in text
+    assert "(timed on a busy machine: load 3.2 on 2 cores; so was the retake)" in text
+    assert haptic_regions.press_words(rows) == "a press of 1 cm over 0.5 s, held"
+
+    ctx = FakeContext(tmp_path / "b", runs={"realtime_cube_whole": [served(2, 500)]})
+    text = haptic_regions.realtime_summary(haptic_regions.realtime_rows(ctx))
+    assert "2 s at 0.5 kHz" in text and "3 of 1000 answers later than 2 ms" in text
+    assert "machine load not recorded" in text
+
+
+def test_a_served_line_of_the_liver_reports_reads_its_run():
+    line = haptic_regions_liver.realtime_line(served(10, 2000))
+    assert "paced at 2 kHz for 10 s, a press of 1 cm over 0.5 s, held" in line
+    assert "3 of 20000 answers later than 0.5 ms" in line
