@@ -1,0 +1,17 @@
+"""The regions summary's verdicts follow the measured errors: which exchange (held or
+interpolated interface values) wins is judged per scene, never written once for all."""
+from pipeline.reports.haptic_regions import held_against_interpolated
+
+
+def rows(scene, held, interpolated):
+    return ([{"scene": scene, "coupling": "exchange_held", "rms": e} for e in held]
+            + [{"scene": scene, "coupling": "exchange_interpolated", "rms": e} for e in interpolated])
+
+
+def test_the_exchange_that_wins_is_named_per_scene_from_the_errors():
+    text = held_against_interpolated(rows("cuboid", [1.0, 2.0], [3.0, 4.0]) + rows("refined liver", [20.0], [5.0]))
+    assert "held interface values give the smaller median RMS error on the cuboid (1.5 % against 3.5 %)" in text
+    assert "interpolated ones on the refined liver (20 % against 5 %" in text
+    text = held_against_interpolated(rows("cuboid", [3.0], [1.0]))
+    assert "held interface values give the smaller" not in text and "interpolated ones on the cuboid" in text
+    assert held_against_interpolated(rows("cuboid", [1.0], [])) == ""
