@@ -12,6 +12,7 @@ SCENE_PATHS = {
     "rate": ("haptics", "rate"), "duration": ("haptics", "duration"), "probe": ("haptics", "probe_stiffness"),
     "input": ("input", "kind"), "amplitude": ("input", "amplitude"),
     "f_start": ("input", "start_frequency"), "f_end": ("input", "end_frequency"),
+    "f_sine": ("input", "frequency"), "growth_time": ("input", "growth_time"),
     "solver": ("solver", "kind"), "scheme": ("solver", "implicit_scheme"),
     "linear_solver": ("linear_solver",),
 }
@@ -23,6 +24,7 @@ WORDS = {
     "duration": lambda v: f"{fmt(v)} s", "probe": lambda v: f"probe spring {fmt(v)} N/m",
     "input": lambda v: f"{v} input", "amplitude": lambda v: f"amplitude {fmt(1e3 * v)} mm",
     "f_start": lambda v: f"from {fmt(v)} Hz", "f_end": lambda v: f"to {fmt(v)} Hz",
+    "f_sine": lambda v: f"sine of {fmt(v)} Hz", "growth_time": lambda v: f"growing over {fmt(v)} s",
     "solver": lambda v: f"{v} solver", "scheme": lambda v: SCHEMES.get(v, str(v).replace("_", " ")),
     "linear_solver": lambda v: f"{v} solves",
 }
@@ -93,3 +95,21 @@ def same_scene_clause(rows_a, rows_b, name_a: str, name_b: str) -> str:
     if not diff:
         return ""
     return " Note: the two are not the same scene (" + "; ".join(diff) + "), so the comparison mixes that difference in."
+
+
+def regions(rows, primary=True) -> str:
+    """The regions' settings of the rows: "E = 5 kPa, primary region 10 nodes, secondary region
+    every 20th frame (50 Hz)" (primary size left out with primary=False, for sweeps of it)."""
+    def either(vals, f):
+        return " or ".join(f(v) for v in sorted(set(vals)))
+    text = f"E = {either([r['E'] for r in rows], lambda v: fmt(v / 1000))} kPa"
+    if primary:
+        text += f", primary region {either([r['n'] for r in rows], str)} nodes"
+    return (text + f", secondary region every {either([r['every'] for r in rows], lambda e: f'{e}th')} frame "
+            f"({either([r['rate'] for r in rows], lambda v: f'{v:.3g} Hz')})")
+
+
+def growing_sine(rows) -> str:
+    """The growing sine of the rows: "1 Hz sine growing from 0 to 20 mm over 10 s"."""
+    return (f"{one(rows, 'f_sine', 1, 'Hz')} sine growing from 0 to {one(rows, 'amplitude', 1e3, 'mm')} over "
+            f"{one(rows, 'growth_time', 1, 's')}")
