@@ -41,3 +41,22 @@ def test_a_served_line_of_the_liver_reports_reads_its_run():
     line = haptic_regions_liver.realtime_line(served(10, 2000))
     assert "paced at 2 kHz for 10 s, a press of 1 cm over 0.5 s, held" in line
     assert "3 of 20000 answers later than 0.5 ms" in line
+
+
+def whole_run(stiffness, frame_step):
+    frames = 20
+    payload = {"force": [[0.0, 0.0, -0.1 * k] for k in range(frames)], "time": [k * frame_step for k in range(frames)],
+               "timing": {"frame_seconds_p50": 0.2 * frame_step, "frame_seconds_p99": 0.5 * frame_step,
+                          "frame_seconds_max": frame_step, "deadline_misses": 0},
+               "model": {"nodes": 10, "tets": 12}, "substeps": 2, "dt": frame_step / 2, "frames": frames,
+               "events": [], "frame_step": frame_step}
+    return run(payload, {"input": {"kind": "press"}, "probe": {"stiffness": stiffness}})
+
+
+def test_the_whole_model_summary_gives_the_runs_spring_and_period(tmp_path):
+    from pipeline.reports import haptic_whole
+    ctx = FakeContext(tmp_path, runs={"cube_run": [whole_run(40, 0.002)], "liver_run": [whole_run(40, 0.002)]})
+    haptic_whole.report(ctx)
+    text = (tmp_path / "summary.md").read_text()
+    assert "through a 40 N/m spring once per 2 ms frame" in text and "100 N/m" not in text and "1 ms" not in text
+    assert "fits the 2 ms haptic period" in text
