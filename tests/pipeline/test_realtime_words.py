@@ -60,3 +60,27 @@ def test_the_whole_model_summary_gives_the_runs_spring_and_period(tmp_path):
     text = (tmp_path / "summary.md").read_text()
     assert "through a 40 N/m spring once per 2 ms frame" in text and "100 N/m" not in text and "1 ms" not in text
     assert "fits the 2 ms haptic period" in text
+
+
+def robust_run(law, depth, ramp, events):
+    frames, step = 40, 0.05
+    time = [k * step for k in range(frames)]
+    force = [[0.0, 0.0, -0.0 if (events and k % 2 and t > ramp) else -1.0 * min(t / ramp, 1.0)]
+             for k, t in enumerate(time)]
+    payload = {"force": force, "time": time, "events": [{"frame": 25, "message": "inverted"}] * events,
+               "timing": {"frame_seconds_p50": 1e-4, "frame_seconds_p99": 2e-4, "frame_seconds_max": 3e-4,
+                          "deadline_misses": 0},
+               "frames": frames, "substeps": 1, "model": {"tets": 12}, "frame_step": step}
+    return run(payload, {"model": {"material": {"model": law}}, "probe": {"stiffness": 70},
+                         "input": {"kind": "press", "depth": depth, "ramp_time": ramp}})
+
+
+def test_the_deep_press_summary_gives_the_runs_depth_ramp_hold_and_spring(tmp_path):
+    from pipeline.reports import haptic_robust
+    ctx = FakeContext(tmp_path, runs={"press_run": [robust_run("neo_hookean_paper", 0.02, 0.5, 3),
+                                                    robust_run("stable_neo_hookean", 0.02, 0.5, 0)]})
+    haptic_robust.report(ctx)
+    table = (tmp_path / "robust.md").read_text()
+    assert "through a 70 N/m spring" in table and "The hold is the 1.45 s after the ramp" in table
+    text = (tmp_path / "robust_summary.md").read_text()
+    assert "pressed 2 cm into the liver" in text and "three times" not in text
