@@ -84,3 +84,20 @@ def test_the_deep_press_summary_gives_the_runs_depth_ramp_hold_and_spring(tmp_pa
     assert "through a 70 N/m spring" in table and "The hold is the 1.45 s after the ramp" in table
     text = (tmp_path / "robust_summary.md").read_text()
     assert "pressed 2 cm into the liver" in text and "three times" not in text
+
+
+def test_the_modal_caption_gives_each_scenes_radius_law_and_probe_from_its_runs(tmp_path):
+    from pipeline.reports import haptic_regions_modal as rep
+    from test_haptic_regions_modal_report import runs_for
+    t = np.linspace(0, 1, 200)
+    w = np.stack([0 * t, 0 * t, np.sin(6 * t)], axis=1)
+    runs = runs_for(w, 1.03, 1.005)
+    for stage in ("cube_massless", "cube_guyan", "cube_modal"):
+        for r in runs[stage]:
+            r.payload["regions"]["radius"] = 0.03
+            r.config.update(probe={"stiffness": 55, "contact": "attached"},
+                            model={"material": {"model": "stable_neo_hookean"}})
+    rep.report(FakeContext(tmp_path, runs=runs))
+    caption = (tmp_path / "regions_modal.md").read_text()
+    assert "cuboid: radius 3 cm, stable neo-Hookean, probe 55 N/m, attached" in caption
+    assert "2.5 cm" not in caption and "100 N/m" not in caption
