@@ -60,8 +60,22 @@ def rows_of(ctx):
             rows.append({"stage": stage, "contact": k[0], "law": k[1], "input": k[2], "k": k[3], "rms": rms, "peak": peak,
                          "end": end_error(f, fw), "mean": p["timing"]["frame_seconds_mean"],
                          "whole_mean": w["timing"]["frame_seconds_mean"], "events": len(p["events"]),
-                         "whole_events": len(w["events"]), "whole_chatter": chatter(fw), "force": f, "whole": fw, "time": np.array(p["time"])})
+                         "whole_events": len(w["events"]), "whole_chatter": chatter(fw), "force": f, "whole": fw, "time": np.array(p["time"]),
+                         "radius": (p.get("regions") or {}).get("radius"),
+                         "every": (p.get("regions") or {}).get("secondary_every"),
+                         "ramp": run.config.get("input", {}).get("ramp_time")})
     return rows
+
+
+def _either(values, f) -> str:
+    vals = sorted({v for v in values if v is not None})
+    return " or ".join(f(v) for v in vals) if vals else "unknown"
+
+
+def regions_words(rows) -> str:
+    """"regions of radius 3.5 cm, secondary every 10 frames", from the region runs."""
+    return (f"regions of radius {_either([r['radius'] for r in rows], lambda v: f'{100 * v:g} cm')}, secondary every "
+            f"{_either([r['every'] for r in rows], str)} frames")
 
 
 # The spring at which the whole model is stable on the liver (see the summary's first point).
@@ -157,7 +171,7 @@ def report(ctx):
                 [[LABEL[r["stage"]], r["k"], r["contact"], LAW[r["law"]], r["input"], r["rms"], r["peak"], r["end"],
                   1e3 * r["mean"], 1e3 * r["whole_mean"], r["events"], r["whole_events"], r["whole_chatter"]]
                  for r in rows],
-                "The liver held at one end, regions of radius 3.5 cm, secondary every 10 frames, against the whole "
+                f"The liver held at one end, {regions_words(rows)}, against the whole "
                 "model with the same contact, law and input. Errors relative to the whole model's peak |F|; the end "
                 f"error is at the last frame. One thread on {cpu_description()} while other work ran.")
     for law in ("stable_neo_hookean", "linear"):
@@ -184,7 +198,9 @@ def report(ctx):
 
 def summary_lines(rows, fine, realtime=()):
     L = ["## Why the regions miss the liver: the causes one at a time", "",
-         "The liver held at one end, the condensed regions (radius 3.5 cm) against the whole model with the same "
+         "The liver held at one end, the condensed regions (radius "
+         f"{_either([r['radius'] for r in rows if r['stage'] == 'condensed'], lambda v: f'{100 * v:g} cm')}) "
+         "against the whole model with the same "
          "contact, law and input; RMS force error relative to the whole model's peak force "
          "([table](regions_liver.md), [forces](regions_liver_forces.png)).", ""]
     inputs = ("slow press",) + DYNAMIC
@@ -216,7 +232,10 @@ def summary_lines(rows, fine, realtime=()):
     stab = pick(rows, "condensed", "attach", "stable_neo_hookean", "slow press")
     if lin is not None:
         exact = lin["end"] < 0.01
-        line = (f"- **quasi-static.** Slow press (1.5 s ramp, held 1 s), attached: with linear elements everywhere the "
+        hold = lin["time"][-1] - lin["ramp"] if lin["ramp"] is not None and len(lin["time"]) else None
+        line = (f"- **quasi-static.** Slow press ("
+                + (f"{lin['ramp']:g} s ramp, held {hold:.2g} s" if hold is not None else "ramp and hold")
+                + "), attached: with linear elements everywhere the "
                 f"condensed far field ends {lin['end']:.2g} % from the whole model "
                 + ("(what the damped settling leaves: the condensation is exact at equilibrium on the liver's curved "
                    "mesh as on the cuboid)"

@@ -101,3 +101,8 @@ def test_the_modal_caption_gives_each_scenes_radius_law_and_probe_from_its_runs(
     caption = (tmp_path / "regions_modal.md").read_text()
     assert "cuboid: radius 3 cm, stable neo-Hookean, probe 55 N/m, attached" in caption
     assert "2.5 cm" not in caption and "100 N/m" not in caption
+
+
+def test_the_liver_causes_name_the_regions_their_runs_used():
+    rows = [{"radius": 0.03, "every": 5}, {"radius": 0.035, "every": 5}]
+    assert haptic_regions_liver.regions_words(rows) == "regions of radius 3 or 3.5 cm, secondary every 5 frames"
