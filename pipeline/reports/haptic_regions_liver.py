@@ -74,7 +74,7 @@ def _either(values, f) -> str:
 
 def regions_words(rows) -> str:
     """"regions of radius 3.5 cm, secondary every 10 frames", from the region runs."""
-    return (f"regions of radius {_either([r['radius'] for r in rows], lambda v: f'{100 * v:g} cm')}, secondary every "
+    return (f"regions of radius {_either([r['radius'] for r in rows], lambda v: f'{100 * v:g}')} cm, secondary every "
             f"{_either([r['every'] for r in rows], str)} frames")
 
 
@@ -199,7 +199,7 @@ def report(ctx):
 def summary_lines(rows, fine, realtime=()):
     L = ["## Why the regions miss the liver: the causes one at a time", "",
          "The liver held at one end, the condensed regions (radius "
-         f"{_either([r['radius'] for r in rows if r['stage'] == 'condensed'], lambda v: f'{100 * v:g} cm')}) "
+         f"{_either([r['radius'] for r in rows if r['stage'] == 'condensed'], lambda v: f'{100 * v:g}')} cm) "
          "against the whole model with the same "
          "contact, law and input; RMS force error relative to the whole model's peak force "
          "([table](regions_liver.md), [forces](regions_liver_forces.png)).", ""]
