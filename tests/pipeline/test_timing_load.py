@@ -105,3 +105,16 @@ def test_cost_ratios_are_worded_from_the_number():
     assert cheaper_or_dearer(1.13) == "linear elements 1.13× dearer"
     assert cheaper_or_dearer(0.5) == "linear elements 2× cheaper"
     assert cheaper_or_dearer(1.0) == "no measurable difference"
+
+
+def test_the_benchmark_target_verdict_carries_the_busy_note(tmp_path):
+    import json
+    from pipeline.bench import kernel_ratios
+    busy = {"cores": 2, "load_before": 3.2, "load_after": 3.2, "steal_percent": 0.0, "calibration_change": 0.0,
+            "disturbed": ["load"], "flagged": True, "retaken": True}
+    path = tmp_path / "bench_dhd.json"
+    path.write_text(json.dumps({"machine": busy, "benchmarks": [
+        {"name": "BM_NodalForces/partition:0", "run_type": "iteration", "real_time": 100.0},
+        {"name": "BM_NodalForces/partition:2", "run_type": "iteration", "real_time": 113.0}]}))
+    line = [l for l in kernel_ratios(path) if "Target of the engine" in l][0]
+    assert "1.1× — not met" in line and "(timed on a busy machine: load 3.2 on 2 cores; so was the retake)" in line
