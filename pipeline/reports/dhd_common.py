@@ -390,7 +390,8 @@ def _speed_words(s50: float) -> str:
 def _table1_verdict(t1: dict, rate0, agree: list, differ: list, why: list) -> None:
     """The Table 1 part of the verdict: every claim from the measured ratios, and each one carries
     the timing's busy-machine note (dhd_table1's "busy_note") when the sitting was disturbed."""
-    busy = t1.get("busy_note") or ""
+    # facts from before the timing recorded the machine's load say so
+    busy = t1.get("busy_note", "(machine load not recorded for this timing)") or ""
     first = f" {busy}" if busy else ""
     note = f" {busy.split(':')[0]})" if ":" in busy else first
     s50, p50 = t1.get("speedup_50_ours"), t1.get("speedup_50_paper")
