@@ -133,6 +133,20 @@ def best_speedup_within(points, budget):
     return best
 
 
+def budget_sentence(budget, cells, where, note="") -> str:
+    """Which family is fastest within an error budget at each load: cells are (load label,
+    family, speed-up or None); a family is named only where it beats all-TLED."""
+    parts = []
+    for w in where:
+        cands = [(speedup, family) for load, family, speedup in cells if load == w and speedup is not None]
+        best = max(cands) if cands else None
+        if best and best[0] > 1.0 + BEATS:
+            parts.append(f"the fastest at {w} is {best[1]} ({fmt(best[0], 3)}× all-TLED)")
+        else:
+            parts.append(f"nothing beats all-TLED at {w}")
+    return f"Within e ≤ {fmt(100 * budget)} %, " + "; ".join(parts) + note + "."
+
+
 def layer_jump(data, loads):
     """How much the layer split's error grows from its largest mixed share to all-cheap, the step
     at which the top layer under the tool turns cheap too: the smallest such factor over the loads
@@ -239,17 +253,8 @@ def report(ctx):
         words.append(f"At {fmt(load * unit_scale)} {unit} the smallest error at equal r comes from: {ranking} "
                      "of the shares.")
     for b_i, b in enumerate(budgets):
-        parts = []
-        for load in loads:
-            cands = [(row[2 + b_i], row[1]) for row in budget_rows
-                     if row[0] == f"{fmt(load * unit_scale)} {unit}" and row[2 + b_i] is not None]
-            best = max(cands) if cands else None
-            if best and best[0] > 1.0 + BEATS:
-                parts.append(f"{best[1]} at {fmt(load * unit_scale)} {unit} ({fmt(best[0], 3)}× all-TLED)")
-            else:
-                parts.append(f"nothing beats all-TLED at {fmt(load * unit_scale)} {unit}")
-        if parts:
-            words.append(f"Within e ≤ {fmt(100 * b)} %: " + "; ".join(parts) + note + ".")
+        where = [f"{fmt(load * unit_scale)} {unit}" for load in loads]
+        words.append(budget_sentence(b, [(row[0], row[1], row[2 + b_i]) for row in budget_rows], where, note))
     lines = ["### Partition strategy at equal share\n"] + mds + [budget_md]
     lines.append("Plot: [dhd/partition_error.png](dhd/partition_error.png).\n")
     lines.append(" ".join(words) + "\n")
