@@ -106,3 +106,20 @@ def test_the_modal_caption_gives_each_scenes_radius_law_and_probe_from_its_runs(
 def test_the_liver_causes_name_the_regions_their_runs_used():
     rows = [{"radius": 0.03, "every": 5}, {"radius": 0.035, "every": 5}]
     assert haptic_regions_liver.regions_words(rows) == "regions of radius 3 or 3.5 cm, secondary every 5 frames"
+
+
+def test_the_dynamic_far_field_summary_gives_its_runs_spring_and_rate(tmp_path, monkeypatch):
+    from pipeline.reports import haptic_regions_dynamic as rep
+    rows = {"cube_run": [], "liver_run": [], "cube_exchange": [], "liver_exchange": []}
+    for secondary, rms in (("static", 30.0), ("implicit", 35.0)):
+        rows["liver_exchange"].append(run({}, {"regions": {"secondary": secondary}, "probe": {"stiffness": 45},
+                                               "input": {"kind": "press"}}))
+    def fake_row(scene, r, whole):
+        return {"scene": scene, "input": "press", "rms": 30.0 if r.config["regions"]["secondary"] == "static" else 35.0,
+                "peak": 1.0, "mean": 1e-3, "whole_mean": 1e-3, "region_events": 0, "whole_events": 0, "every": 7}
+    monkeypatch.setattr(rep, "row_of", fake_row)
+    monkeypatch.setattr(rep, "whole_rows", lambda ctx, stage: {})
+    rep.report(FakeContext(tmp_path, runs=rows))
+    text = (tmp_path / "regions_dynamic_summary.md").read_text()
+    assert "through a 45 N/m probe spring" in text and "100 N/m" not in text
+    assert "secondary every 7 frames" in (tmp_path / "regions_dynamic.md").read_text()
