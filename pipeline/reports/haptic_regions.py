@@ -273,8 +273,8 @@ def summary(table, inputs, adaptive, cpu):
              "[inputs](regions_inputs.md), [adaptive radius and skipping](regions_adaptive.md); plots: "
              "[run time against error](regions_tradeoff.png), forces on the "
              "[cuboid](regions_forces_cube.png), [liver](regions_forces_liver.png), "
-             "[hybrid liver](regions_forces_hybrid.png) (000's partition: TLED within 5 cm of the tool, linear "
-             "elsewhere), [refined liver](regions_forces_fine.png).", ""]
+             f"[hybrid liver](regions_forces_hybrid.png) ({hybrid_words(table + inputs)}), "
+             "[refined liver](regions_forces_fine.png).", ""]
     for scene in [s[0] for s in SCENES]:
         rows = [r for r in table + inputs if r["scene"] == scene]
         if not rows:
@@ -326,6 +326,25 @@ def summary(table, inputs, adaptive, cpu):
                          f"{1e3 * r['mean']:.3g} ms mean per frame.")
     lines += ["", plain_words(inputs, cpu)]
     return "\n".join(lines)
+
+
+def hybrid_words(rows) -> str:
+    """The hybrid liver's partition from its runs: "000's partition: TLED within 5 cm of
+    (-4, -5, 152) cm, linear elsewhere"."""
+    parts = []
+    for r in rows:
+        if r["scene"] != "liver, hybrid":
+            continue
+        p = (r["run"].config.get("model") or {}).get("partition") or {}
+        if p.get("kind") == "sphere":
+            centre = ", ".join(f"{100 * c:g}" for c in p["center"])
+            text = (f"000's partition: {p.get('nonlinear_element', 'TLED').upper()} within {100 * p['radius']:g} cm "
+                    f"of ({centre}) cm, {p.get('linear_element', 'linear')} elsewhere")
+        else:
+            text = f"partition {p.get('kind', 'as its config sets')}"
+        if text not in parts:
+            parts.append(text)
+    return "; ".join(parts) or "no hybrid run"
 
 
 def held_against_interpolated(rows) -> str:

@@ -15,3 +15,12 @@ def test_the_exchange_that_wins_is_named_per_scene_from_the_errors():
     text = held_against_interpolated(rows("cuboid", [3.0], [1.0]))
     assert "held interface values give the smaller" not in text and "interpolated ones on the cuboid" in text
     assert held_against_interpolated(rows("cuboid", [1.0], [])) == ""
+
+
+def test_the_hybrid_liver_is_described_by_its_partition():
+    from types import SimpleNamespace
+    from pipeline.reports.haptic_regions import hybrid_words
+    cfg = {"model": {"partition": {"kind": "sphere", "center": [-0.04, -0.05, 1.52], "radius": 0.03}}}
+    rows = [{"scene": "liver, hybrid", "run": SimpleNamespace(config=cfg)}] * 2 + [{"scene": "liver"}]
+    assert hybrid_words(rows) == "000's partition: TLED within 3 cm of (-4, -5, 152) cm, linear elsewhere"
+    assert hybrid_words([{"scene": "liver"}]) == "no hybrid run"
