@@ -70,7 +70,7 @@ def row_of(scene, run, whole):
         "rms": rms, "peak": peak, "region_events": len(p["events"]), "whole_events": len(w["payload"]["events"]),
         "updates": r["secondary_updates"], "skipped": r["secondary_skipped"], "builds": r["builds"],
         "build_max": r["build_seconds_max"], "secondary_max": r["secondary_seconds_max"],
-        "frames_per_level": r["adaptive"]["frames_per_level"], "run": run,
+        "frames_per_level": r["adaptive"]["frames_per_level"], "run": run, "period": p.get("frame_step"),
     }
 
 
@@ -123,12 +123,15 @@ def plot_tradeoff(rows, path):
             ax.axhline(np.median(whole), color="grey", lw=0.8, ls=":")
             ax.text(ax.get_xlim()[0] if False else 1e-3, np.median(whole), f" whole model, {scene}", fontsize=6,
                     va="bottom", color="grey")
-    ax.axhline(1.0, color="black", lw=0.8, ls="--")
+    periods = sorted({r["period"] for r in rows if r.get("period")}) or [1e-3]
+    for period in periods:
+        ax.axhline(1e3 * period, color="black", lw=0.8, ls="--")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("RMS force error against the whole model (% of its peak)")
     ax.set_ylabel("mean time per frame (ms)")
-    ax.set_title("Run time against force error, every setting (dashed: the 1 ms haptic period)", fontsize=9)
+    ax.set_title("Run time against force error, every setting (dashed: the "
+                 + " or ".join(f"{1e3 * v:g} ms" for v in periods) + " haptic period)", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=6, ncol=2)
     plots.save(fig, path)
