@@ -9,7 +9,7 @@ from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.element_kinds import element_kind_names
 from pipeline.reports import dhd_common as common
-from pipeline.tables import fmt, write_table
+from pipeline.tables import either, fmt, write_table
 from pipeline.artifacts import write_text_atomic
 
 US = 1e6
@@ -164,8 +164,7 @@ def min_altitude(nodes, tets):
 
 def _either(rows, key, unit) -> str:
     """The rows' values of `key` with their unit: "0.3 s", or "0.3 or 0.4 s" where they differ."""
-    vals = sorted({r[key] for r in rows if r.get(key) is not None})
-    return (" or ".join(f"{v:,g}".replace(",", " ") for v in vals) + f" {unit}") if vals else "unknown"
+    return either([r.get(key) for r in rows], lambda v: f"{v:,g}".replace(",", " "), unit)
 
 
 def write_stability(ctx, facts):

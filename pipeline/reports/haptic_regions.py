@@ -9,7 +9,7 @@ import numpy as np
 from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.stages.machine_load import busy_note
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 # scene label, whole-model stage, regions stages
 SCENES = (("cuboid", "cube_run", "cube"), ("liver", "liver_run", "liver"),
@@ -214,8 +214,7 @@ def realtime_rows(ctx):
 
 
 def _either(values, unit="", scale=1.0):
-    vals = sorted({v for v in values if v is not None})
-    return " or ".join(f"{v * scale:g}" for v in vals) + (f" {unit}" if unit and vals else "")
+    return either([v * scale for v in values if v is not None], unit=unit)
 
 
 def realtime_run_words(rows) -> str:

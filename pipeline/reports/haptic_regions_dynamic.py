@@ -5,14 +5,9 @@ import numpy as np
 
 from pipeline.bench import cpu_description
 from pipeline.reports.haptic_regions import row_of, runs_of, whole_rows
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 SCENES = (("cuboid", "cube_run", "cube_exchange"), ("liver", "liver_run", "liver_exchange"))
-
-
-def either(values, f) -> str:
-    vals = sorted({v for v in values if v is not None})
-    return " or ".join(f(v) for v in vals) if vals else "unknown"
 
 
 def report(ctx):

@@ -9,7 +9,7 @@ from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.reports.haptic_regions import errors, runs_of
 from pipeline.stages.machine_load import busy_note
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 REGION_STAGES = ("condensed", "guyan", "exchange")
 LABEL = {"condensed": "condensed", "guyan": "condensed + Guyan mass", "exchange": "eq. 7, held"}
@@ -67,15 +67,10 @@ def rows_of(ctx):
     return rows
 
 
-def _either(values, f) -> str:
-    vals = sorted({v for v in values if v is not None})
-    return " or ".join(f(v) for v in vals) if vals else "unknown"
-
-
 def regions_words(rows) -> str:
     """"regions of radius 3.5 cm, secondary every 10 frames", from the region runs."""
-    return (f"regions of radius {_either([r['radius'] for r in rows], lambda v: f'{100 * v:g}')} cm, secondary every "
-            f"{_either([r['every'] for r in rows], str)} frames")
+    return (f"regions of radius {either([r['radius'] for r in rows], lambda v: f'{100 * v:g}')} cm, secondary every "
+            f"{either([r['every'] for r in rows], str)} frames")
 
 
 # The spring at which the whole model is stable on the liver (see the summary's first point).
@@ -199,7 +194,7 @@ def report(ctx):
 def summary_lines(rows, fine, realtime=()):
     L = ["## Why the regions miss the liver: the causes one at a time", "",
          "The liver held at one end, the condensed regions (radius "
-         f"{_either([r['radius'] for r in rows if r['stage'] == 'condensed'], lambda v: f'{100 * v:g}')} cm) "
+         f"{either([r['radius'] for r in rows if r['stage'] == 'condensed'], lambda v: f'{100 * v:g}')} cm) "
          "against the whole model with the same "
          "contact, law and input; RMS force error relative to the whole model's peak force "
          "([table](regions_liver.md), [forces](regions_liver_forces.png)).", ""]

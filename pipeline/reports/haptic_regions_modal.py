@@ -8,7 +8,7 @@ from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.reports.haptic_regions import errors, runs_of
 from pipeline.reports.haptic_regions_liver import LAW, fine_runs, input_label, period_words, realtime_line
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 SCENES = ("cube", "liver")
 SCENE_NAME = {"cube": "paper's cuboid", "liver": "liver"}
@@ -67,15 +67,11 @@ def law_of(run):
 def scene_caption(rows) -> str:
     """"cuboid: radius 2.5 cm, neo-Hookean, probe 100 N/m, grasp; liver: ...", every value from the
     runs of each scene ("2.5 or 3.5 cm" where they differ)."""
-    def either(vals, f):
-        vals = sorted({v for v in vals if v is not None}, key=str)
-        return " or ".join(f(v) for v in vals) if vals else "unknown"
     parts = []
     for scene in dict.fromkeys(r["scene"] for r in rows):
         sel = [r for r in rows if r["scene"] == scene]
-        parts.append(f"{SCENE_NAME[scene]}: radius {either([r['radius'] for r in sel], lambda v: f'{100 * v:g} cm')}, "
-                     f"{either([r['law'] for r in sel], str)}, probe "
-                     f"{either([r['probe'] for r in sel], lambda v: f'{v:g} N/m')}, "
+        parts.append(f"{SCENE_NAME[scene]}: radius {either([r['radius'] for r in sel], lambda v: f'{100 * v:g}', 'cm')}, "
+                     f"{either([r['law'] for r in sel], str)}, probe {either([r['probe'] for r in sel], unit='N/m')}, "
                      f"{either([r['contact'] for r in sel], str)}")
     return "; ".join(parts)
 
@@ -119,18 +115,18 @@ def fine_caption(ctx) -> str:
     the interface product's precision."""
     runs = [run for run, *_ in fine_runs(ctx, ("fine_guyan", "fine_modal"))]
 
-    def either(vals):
-        return " or ".join(sorted({str(v) for v in vals if v is not None})) or "unknown"
+    def words(vals):
+        return either([str(v) for v in vals if v is not None], str)
     probes = [run.config.get("probe") or {} for run in runs]
     springs = [f"{p['stiffness']:g}" for p in probes if p.get("stiffness") is not None]
     durations = [f"{run.payload['time'][-1]:.3g}" for run in runs if run.payload.get("time")]
     laws = [LAW.get(law_of(run), law_of(run)) for run in runs]
     precisions = [(run.payload["regions"] or {}).get("precision") for run in runs]
-    return (f"Refined liver ({either((run.payload.get('model') or {}).get('tets') for run in runs)} tets), "
-            f"{either(p.get('contact') for p in probes)} probe {either(springs)} N/m, {either(laws)}, "
-            f"{either(input_label(run.config['input']) for run in runs if 'input' in run.config)} for "
-            f"{either(durations)} s, condensed "
-            f"regions with a {either(precisions)}-precision interface product")
+    return (f"Refined liver ({words((run.payload.get('model') or {}).get('tets') for run in runs)} tets), "
+            f"{words(p.get('contact') for p in probes)} probe {words(springs)} N/m, {words(laws)}, "
+            f"{words(input_label(run.config['input']) for run in runs if 'input' in run.config)} for "
+            f"{words(durations)} s, condensed "
+            f"regions with a {words(precisions)}-precision interface product")
 
 
 def fine_rows(ctx):

@@ -5,7 +5,7 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.bench import cpu_description
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 LAW_NAMES = {"neo_hookean_paper": "neo-Hookean (000 eq. 14)", "stable_neo_hookean": "stable neo-Hookean (Smith et al. 2018)"}
 
@@ -50,8 +50,7 @@ def plot_forces(rows, path):
 
 def _either(rows, key, scale, unit) -> str:
     """The rows' values of `key` in words ("3 cm", or "2 or 3 cm" where they differ)."""
-    vals = sorted({round(r[key] * scale, 9) for r in rows if r[key] is not None})
-    return (" or ".join(f"{v:g}" for v in vals) + f" {unit}") if vals else "unknown"
+    return either([round(r[key] * scale, 9) for r in rows if r[key] is not None], unit=unit)
 
 
 def report(ctx):

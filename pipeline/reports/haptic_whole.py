@@ -5,7 +5,7 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.bench import cpu_description
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 SCENES = (("cube_run", "cuboid", "forces_cube.png"), ("liver_run", "liver", "forces_liver.png"))
 
@@ -23,12 +23,6 @@ def row_of(scene, run):
         "first_event": p["events"][0] if p["events"] else None,
         "probe": (run.config.get("probe") or {}).get("stiffness"),
     }
-
-
-def either(values, fmt_one) -> str:
-    """Every distinct value, "a or b", for a sentence that covers several runs."""
-    vals = sorted({v for v in values if v is not None})
-    return " or ".join(fmt_one(v) for v in vals) if vals else "unknown"
 
 
 def period_words(rows) -> str:

@@ -24,3 +24,11 @@ def test_the_hybrid_liver_is_described_by_its_partition():
     rows = [{"scene": "liver, hybrid", "run": SimpleNamespace(config=cfg)}] * 2 + [{"scene": "liver"}]
     assert hybrid_words(rows) == "000's partition: TLED within 3 cm of (-4, -5, 152) cm, linear elsewhere"
     assert hybrid_words([{"scene": "liver"}]) == "no hybrid run"
+
+
+def test_either_names_every_value_the_runs_took_once():
+    from pipeline.tables import either
+    assert either([10, 10.0, None], unit="N/m") == "10 N/m"
+    assert either([20, 10], unit="N/m") == "10 or 20 N/m"
+    assert either([None]) == "unknown"
+    assert either(["grasp", "attached"], str) == "attached or grasp"
