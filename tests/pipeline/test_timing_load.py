@@ -118,3 +118,31 @@ def test_the_benchmark_target_verdict_carries_the_busy_note(tmp_path):
         {"name": "BM_NodalForces/partition:2", "run_type": "iteration", "real_time": 113.0}]}))
     line = [l for l in kernel_ratios(path) if "Target of the engine" in l][0]
     assert "1.1× — not met" in line and "(timed on a busy machine: load 3.2 on 2 cores; so was the retake)" in line
+
+
+def test_the_timing_stage_records_the_machine_beside_its_samples(pipeline_env):
+    """dhd_timing through the real dhd_sim on a small cuboid: the artifact keeps the load record
+    of the sitting and the load average after every sample."""
+    import json
+    from pathlib import Path
+    from conftest import run_pipeline, tool
+    tool("dhd_sim")
+    sim = {"mesh": "@mesh", "material": {"model": "neo_hookean_paper", "E": 5000, "nu": 0.35, "density": 1000},
+           "boundary": {"fixed": ["bottom"]}, "solver": {"kind": "explicit", "steps": 20, "safety_factor": 0.5}}
+    doc = {"description": "timing with its load", "results": "t",
+           "stages": {"mesh": {"tool": "mesher", "config": {"source": {"kind": "cuboid", "cells": [3, 3, 2],
+                                                                      "size": [0.03, 0.03, 0.02]}}},
+                      "timing": {"python": "pipeline.stages.dhd_timing",
+                                 "config": {"sim": sim, "partitions": [{"kind": "uniform"},
+                                                                       {"kind": "uniform", "element": "linear"}],
+                                            "threads": [1], "repeats": 2}}}}
+    (Path(pipeline_env["PIPELINE_EXPERIMENTS"]) / "tl.json").write_text(json.dumps(doc))
+    proc = run_pipeline(pipeline_env, "run", "tl")
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    [path] = (Path(pipeline_env["PIPELINE_CACHE"]) / "artifacts" / "dhd_timing").glob("*.json")
+    payload = json.loads(path.read_text())["payload"]
+    machine = payload["machine"]
+    assert machine["cores"] >= 1 and machine["calibration_before_s"] > 0 and machine["calibration_after_s"] > 0
+    assert isinstance(machine["flagged"], bool) and isinstance(machine["retaken"], bool)
+    assert machine["flagged"] == bool(machine["disturbed"])
+    assert all(len(run["load_per_sample"]) == 2 for run in payload["runs"])
