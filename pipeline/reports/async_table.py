@@ -8,6 +8,7 @@ import numpy as np
 from pipeline import plots
 from pipeline.reports import async_common as C
 from pipeline.reports import async_scene as S
+from pipeline.stages.machine_load import busy_note, worst
 from pipeline.tables import fmt, write_table
 
 T1_HEADERS = ["n (primary nodes)", "f (Hz)", "every (frames)", "time/frame regions (µs)", "time/frame whole (µs)",
@@ -16,24 +17,38 @@ T1_HEADERS = ["n (primary nodes)", "f (Hz)", "every (frames)", "time/frame regio
 
 
 def exchange_words(in_turn, sweep) -> str:
-    """Whether the exchange of 001 eq. 7 alone (both regions every frame) makes most of the sweep's
-    error, judged per primary size from the measured errors."""
-    shares = []
+    """How much of the sweep's error the exchange of 001 eq. 7 alone (both regions every frame)
+    makes: the in-turn error over the sweep's error at the same stiffness and primary size, for
+    every secondary rate; whether that is most of it is judged per rate from the numbers."""
+    share = {}
     for r in in_turn:
-        same = [s["vs_whole"]["rms_relative"] for s in sweep if s["E"] == r["E"] and s["n"] == r["n"]]
-        if same and max(same) > 0:
-            shares.append(r["vs_whole"]["rms_relative"] / max(same))
-    if not shares:
+        for s in sweep:
+            if s["E"] == r["E"] and s["n"] == r["n"] and s["vs_whole"]["rms_relative"] > 0:
+                share.setdefault(s["every"], []).append(r["vs_whole"]["rms_relative"] / s["vs_whole"]["rms_relative"])
+    if not share:
         return ""
-    mid = sorted(shares)[len(shares) // 2]
-    span = f"{min(shares):.2g}-{max(shares):.2g}" if len(shares) > 1 else f"{shares[0]:.2g}"
-    if mid >= 0.5:
-        return (f"Most of the error is the exchange of 001 eq. 7 itself (it makes {span} of the largest error of the "
-                "sweep at the same primary size): a region sees its neighbours only through their displacements at "
-                "the connection nodes, so one exchange per frame moves the border only a fraction of the way to the "
-                "coupled solution (block Gauss-Seidel with a slow rate). The lower secondary rate adds to it.")
-    return (f"The exchange of 001 eq. 7 alone makes {span} of the largest error of the sweep at the same primary "
-            "size: most of the error comes from the lower secondary rate.")
+    lo, hi = min(min(v) for v in share.values()), max(max(v) for v in share.values())
+    most = sorted(e for e, v in share.items() if min(v) >= 0.5)
+    less = sorted(e for e, v in share.items() if max(v) < 0.5)
+    text = (f"The exchange of 001 eq. 7 alone makes {lo:.2g}-{hi:.2g} of the sweep's RMS error at the same primary "
+            "size (a region sees its neighbours only through their displacements at the connection nodes, once per "
+            "update)")
+    if most and not less and len(most) == len(share):
+        return text + ": most of the error at every secondary rate; the lower rate adds the rest."
+    if less and len(less) == len(share):
+        return text + ": less than half at every secondary rate; most of the error comes from the lower rate."
+    parts = []
+    if most:
+        parts.append(f"most of it with the secondary region every {', '.join(map(str, most))} frames")
+    if less:
+        parts.append(f"less than half every {', '.join(map(str, less))} frames, where the lower rate makes most")
+    return text + ": " + "; ".join(parts) + "."
+
+
+def timing_note(rows) -> str:
+    """The busy-machine note of the runs' timings (pipeline.stages.machine_load): async_sim times
+    itself, so a run without a "machine" record says that its load was not recorded."""
+    return busy_note(worst(r["run"].payload.get("machine") for r in rows))
 
 
 def interpolation(rows) -> str:
@@ -62,7 +77,8 @@ def table1(ctx, rows, E):
            "run (fastest of 20 alternating repeats); the machine is shared, so the gain against the median whole-model "
            f"time of the sweep is given too (whole-model times across runs: median {C.us(float(np.median(whole_times))):.3g} µs, range "
            f"{C.us(min(whole_times)):.3g}-{C.us(max(whole_times)):.3g} µs). Exact closed-loop spectral radius "
-           f"{first['loop_radius']:.4f} (< 1: the sampled probe coupling is stable on the exact model).")
+           f"{first['loop_radius']:.4f} (< 1: the sampled probe coupling is stable on the exact model)."
+           + (f" Times {timing_note(sel)[1:-1]}." if timing_note(sel) else ""))
     return name, write_table(ctx, name, T1_HEADERS, out, cap)
 
 
@@ -111,7 +127,7 @@ def dense_table(ctx, dense):
     headers = ["n", "f (Hz)", "time/frame regions (µs)", "time/frame whole (µs)", "speed gain", "RMS error vs whole (%)"]
     cap = ("Dense Cholesky solves (the direct elimination of 001 §4, cost growing with the square of the region "
            f"size) instead of the sparse factorisation, E = {' or '.join(f'{r:g}' for r in sorted({r['E'] / 1000 for r in dense}))} kPa, "
-           f"{S.chirp(dense)}.")
+           f"{S.chirp(dense)}." + (f" Times {timing_note(dense)[1:-1]}." if timing_note(dense) else ""))
     write_table(ctx, "dense_timing", headers, out, cap)
 
 
@@ -149,7 +165,8 @@ def tradeoff(ctx, rows, thresholds):
                     C.pct(r["vs_whole"]["peak_relative"]), tier])
     headers = ["E (kPa)", "n", "f (Hz)", "time/frame (µs)", "speed gain", "RMS error vs whole (%)",
                "peak error vs whole (%)", "error budget met"]
-    write_table(ctx, "tradeoff", headers, out, "Every setting of the sweep, fastest first per stiffness.")
+    write_table(ctx, "tradeoff", headers, out, "Every setting of the sweep, fastest first per stiffness."
+                + (f" Times {timing_note(rows)[1:-1]}." if timing_note(rows) else ""))
     best = {}
     for t in th:
         for E in sorted({r["E"] for r in rows}):
@@ -250,7 +267,8 @@ def report(ctx):
              + S.same_scene_clause(in_turn, [r for r in sweep if r["E"] in {t["E"] for t in in_turn}],
                                    "the in-turn runs", "the sweep")
              + " " + exchange_words(in_turn, sweep) + "\n",
-             "Fastest settings within an error budget (RMS force error vs the whole model):\n"]
+             "Fastest settings within an error budget (RMS force error vs the whole model)"
+             + (f" {timing_note(sweep)}" if timing_note(sweep) else "") + ":\n"]
     for (t, E), r in sorted(best.items()):
         lines.append(f"- ≤ {100 * t:g} % at E = {E / 1000:g} kPa: " +
                      (f"n = {r['n']}, f = {r['rate']:.3g} Hz, speed gain {fmt(r['speed_gain'])}, error "
