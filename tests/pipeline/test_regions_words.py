@@ -32,3 +32,15 @@ def test_either_names_every_value_the_runs_took_once():
     assert either([20, 10], unit="N/m") == "10 or 20 N/m"
     assert either([None]) == "unknown"
     assert either(["grasp", "attached"], str) == "attached or grasp"
+
+
+def test_the_share_of_the_exchange_in_the_bar_error_is_judged_per_rate():
+    from pipeline.reports.async_table import exchange_words
+    in_turn = [{"E": 5000, "n": 5, "vs_whole": {"rms_relative": 0.16}}]
+    sweep = [{"E": 5000, "n": 5, "every": 2, "vs_whole": {"rms_relative": 0.25}},
+             {"E": 5000, "n": 5, "every": 60, "vs_whole": {"rms_relative": 0.45}}]
+    text = exchange_words(in_turn, sweep)
+    assert "makes 0.36-0.64 of the sweep's RMS error" in text
+    assert "most of it with the secondary region every 2 frames; less than half every 60 frames" in text
+    assert "most of the error at every secondary rate" in exchange_words(in_turn, sweep[:1])
+    assert "less than half at every secondary rate" in exchange_words(in_turn, sweep[1:])
