@@ -108,7 +108,8 @@ def report(ctx):
         bench_md = write_table(ctx, "table1_bench", ["partition", "r", "threads", "steps", "steps/s",
                                                     "vs all-TLED", "ns per element"], bench_rows,
                                "`dhd_sim --bench` on the same scene: four partitions measured in one process "
-                               "(one sample each; the mixed one uses the engine's default distance split).")
+                               "(one sample each; the mixed one uses the engine's default distance split)"
+                               + (f" {busy_note(bench.get('machine'))}." if busy_note(bench.get("machine")) else "."))
     except KeyError:
         pass
 
