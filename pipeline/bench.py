@@ -5,6 +5,7 @@ import subprocess
 from pipeline.paths import BIN, RESULTS, ROOT
 from pipeline.tables import fmt, markdown_table
 from pipeline.artifacts import write_text_atomic
+from pipeline.stages.machine_load import busy_note, measure
 
 
 def run_benchmarks(filter_regex: str = "") -> int:
@@ -24,13 +25,16 @@ def run_benchmarks(filter_regex: str = "") -> int:
         if filter_regex:
             cmd.append(f"--benchmark_filter={filter_regex}")
         print("bench:", exe.name, flush=True)
-        proc = subprocess.run(cmd, cwd=ROOT)
+        # The load, CPU steal and a calibration kernel around the run; a disturbed run is taken
+        # once more, then flagged (pipeline.stages.machine_load).
+        proc, machine = measure(lambda: subprocess.run(cmd, cwd=ROOT), log=lambda m: print("bench:", m, flush=True))
         if proc.returncode != 0 or not out.exists():
             status = 1
             continue
         data = json.loads(out.read_text())
         # The build folder's absolute path is this machine's business: keep it relative.
         data.setdefault("context", {})["executable"] = exe.name
+        data["machine"] = machine
         write_text_atomic(out, json.dumps(data, indent=2) + "\n")
         rows = []
         for b in data.get("benchmarks", []):
@@ -42,7 +46,9 @@ def run_benchmarks(filter_regex: str = "") -> int:
                 "time_unit", "aggregate_name", "aggregate_unit", "label"} and isinstance(v, (int, float))}
             rows.append([b["name"], b.get("iterations"), b.get("real_time"), b.get("cpu_time"),
                          b.get("time_unit"), ", ".join(f"{k}={fmt(v)}" for k, v in counters.items())])
-        sections.append(f"## {exe.name}\n\n" + markdown_table(
+        note = busy_note(machine)
+        sections.append(f"## {exe.name}\n\n" + (f"All figures of this table were {note[1:-1]}.\n\n" if note else "")
+                        + markdown_table(
             ["benchmark", "iterations", "real time", "cpu time", "unit", "counters"], rows))
     ctx = data.get("context", {}) if benches else {}
     machine = (f"{cpu_description()}, {ctx.get('num_cpus', '?')} CPUs at {ctx.get('mhz_per_cpu', '?')} MHz, "
@@ -83,8 +89,9 @@ def kernel_ratios(path):
     the element phase alone with the memory floor of the per-element data path."""
     if not path.exists():
         return []
-    times = {b["name"]: b["real_time"] for b in json.loads(path.read_text()).get("benchmarks", [])
-             if b.get("run_type") != "aggregate"}
+    doc = json.loads(path.read_text())
+    times = {b["name"]: b["real_time"] for b in doc.get("benchmarks", []) if b.get("run_type") != "aggregate"}
+    note = busy_note(doc.get("machine"))
     sections = []
     kinds = [("2", "linear, assembled rows (the engine's default)"), ("5", "linear, element by element"),
              ("1", "TLED, decoupled form"), ("4", "ANP (decoupled form, with its pre-pass)"), ("3", "corotational")]
@@ -107,11 +114,11 @@ def kernel_ratios(path):
         rows = [[label, fmt(times[name] / tled)] for name, label in names if name in times]
         sections += [f"{title} on the paper mesh, cost per element relative to TLED (paper form), "
                      "measured in one run of `bench_dhd`:\n", markdown_table(["kind", "× TLED"], rows)]
-    sections += target_line(times)
+    sections += target_line(times, note)
     return sections
 
 
-def target_line(times):
+def target_line(times, note=""):
     """The issue's "linear ≤ 0.3× TLED" judged on the complete nodal forces of one run, with the
     memory floor of the assembled rows (no product of the stored matrix can beat it)."""
     tled, linear = times.get("BM_NodalForces/partition:0"), times.get("BM_NodalForces/partition:2")
@@ -123,4 +130,4 @@ def target_line(times):
     floor = times.get("BM_LinearRowsMemoryFloor")
     if floor:
         line += f"; reading the assembled rows once, with no arithmetic, already costs {fmt(floor / tled, 2)}×"
-    return [line + " (why: `cpp/apps/dhd_sim.md`, speed section).\n"]
+    return [line + " (why: `cpp/apps/dhd_sim.md`, speed section)" + (f" {note}" if note else "") + ".\n"]

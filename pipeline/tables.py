@@ -10,6 +10,15 @@ from pipeline.artifacts import write_atomic, write_text_atomic
 PLAIN_RANGE = (1e-3, 1e6)
 
 
+def either(values, fmt_one=lambda v: f"{v:g}", unit="") -> str:
+    """The values a sentence about several runs states: "10 N/m", or "10 or 20 N/m" where the runs
+    differ, "unknown" where none recorded one (None values are left out)."""
+    vals = sorted({v for v in values if v is not None}, key=lambda v: (isinstance(v, str), v))
+    if not vals:
+        return "unknown"
+    return " or ".join(fmt_one(v) for v in vals) + (f" {unit}" if unit else "")
+
+
 def fmt(value, digits=4):
     """Compact, honest formatting: `digits` significant digits, no false precision. Numbers in
     PLAIN_RANGE are written plainly: from 10**(digits - 1) on with their whole integer part

@@ -4,6 +4,8 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.reports import async_common as C
+from pipeline.reports import async_scene as S
+from pipeline.reports.async_table import interpolation
 from pipeline.tables import write_table
 
 HEADERS = ["primary region", "nodes (min-max, mean)", "time/frame regions (µs)", "time/frame whole (µs)", "speed gain",
@@ -41,8 +43,8 @@ def report(ctx):
                     C.pct(r["vs_whole"]["rms_relative"]), C.pct(r["vs_whole"]["peak_relative"]),
                     C.pct(r["vs_exact"]["rms_relative"])] + half_errors(r))
     md = write_table(ctx, "table2", HEADERS, out,
-                     "Like 001 Table 2: 1 Hz sine growing from 0 to 20 mm over 10 s, E = 5 kPa, secondary every 20th "
-                     "frame (50 Hz), interpolated. Errors relative to the whole model's peak force; the last two columns "
+                     f"Like 001 Table 2: {S.growing_sine(rows)}, {S.regions(rows, primary=False)}, "
+                     f"{interpolation(rows)}, probe spring {S.one(rows, 'probe', 1, 'N/m')}. Errors relative to the whole model's peak force; the last two columns "
                      "split the run into the small-deformation and the large-deformation half.")
 
     window = ctx.params.get("window", 0.5)
@@ -72,8 +74,10 @@ def report(ctx):
     fixed10 = next((r for r in rows if r["policy"] == "fixed" and r["n"] == 10), None)
     lin = next((r for r in rows if r["policy"] == "linear" and not r["run"].payload["async"]["primary"].get("hold_time")), None)
     held = next((r for r in rows if r["policy"] == "linear" and r["run"].payload["async"]["primary"].get("hold_time")), None)
+    rates = " or ".join(sorted({f"{r['rate']:.3g}" for r in rows}))
     text = ["## Adaptable primary region (001 §5 Fig. 5, §6 Fig. 8, Table 2)\n",
-            "1 Hz sine growing to 20 mm, primary region fixed or sized by the deformation, secondary region at 50 Hz.\n", md]
+            f"{S.growing_sine(rows)}, primary region fixed or sized by the deformation, secondary region at "
+            f"{rates} Hz.\n", md]
     if fixed10 and lin:
         h10, hl = half_errors(fixed10), half_errors(lin)
         text.append(f"Paper: the adaptable region gives better results, especially at large input magnitudes. Measured: "

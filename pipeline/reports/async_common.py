@@ -3,6 +3,7 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.report_md import gather_parts
+from pipeline.reports import async_scene
 
 
 def run_row(run):
@@ -18,6 +19,7 @@ def run_row(run):
         "exact_peak": p.get("exact", {}).get("peak_force"),
         "loop_radius": p.get("exact", {}).get("loop_spectral_radius"),
         "frame_step": p["haptics"]["frame_step"],
+        "scene": async_scene.scene(run.config or {}),
     }
     a = p.get("async")
     if a:

@@ -4,6 +4,7 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.reports import async_common as C
+from pipeline.reports import async_scene as S
 from pipeline.tables import write_table
 from pipeline.artifacts import write_text_atomic
 
@@ -69,7 +70,7 @@ def report(ctx):
                     settling_ms(s["force_whole"], t, end) if settle else None,
                     settling_ms(s["force_async"], t, end) if settle else None])
     md = write_table(ctx, "inputs", HEADERS, out,
-                     "E = 5 kPa, primary region 10 nodes, secondary region every 20th frame (50 Hz). max |Δ²F|: largest "
+                     f"{S.regions(rows)}, probe spring {S.one(rows, 'probe', 1, 'N/m')}. max |Δ²F|: largest "
                      "second difference of the force over consecutive frames inside a window that excludes the input's "
                      "own kinks (" + ", ".join(f"{k} {v[0]:g}-{v[1]:g} s" for k, v in windows.items()) + "): a jump J "
                      "in the force shows as about J. Settling: time after the input stops moving until the force stays "
@@ -85,7 +86,7 @@ def report(ctx):
         pngs.append(png)
     ramp = {r["interpolate"]: r for r in rows if r["input"] == "ramp_hold"}
     text = ["## Inputs and interpolation (001 §5 Fig. 4)\n",
-            "Step, ramp-and-hold and chirp through the probe, primary 10 nodes, secondary every 20th frame.\n", md]
+            f"Step, ramp-and-hold and chirp through the probe, {S.regions(rows)}.\n", md]
     if True in ramp and False in ramp:
         text.append(f"During the ramp the held secondary values move in steps: the force's largest second difference is "
                     f"{1e6 * ramp[False]['async_jump_w']:.3g} µN held against {1e6 * ramp[True]['async_jump_w']:.3g} µN "

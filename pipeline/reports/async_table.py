@@ -7,11 +7,55 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.reports import async_common as C
+from pipeline.reports import async_scene as S
+from pipeline.stages.machine_load import busy_note, worst
 from pipeline.tables import fmt, write_table
 
 T1_HEADERS = ["n (primary nodes)", "f (Hz)", "every (frames)", "time/frame regions (µs)", "time/frame whole (µs)",
               "speed gain", "speed gain vs median whole", "peak force regions (mN)", "peak force whole (mN)", "peak force exact (mN)",
               "RMS error vs whole (%)", "peak error vs whole (%)", "RMS error vs exact (%)", "peak error vs exact (%)"]
+
+
+def exchange_words(in_turn, sweep) -> str:
+    """How much of the sweep's error the exchange of 001 eq. 7 alone (both regions every frame)
+    makes: the in-turn error over the sweep's error at the same stiffness and primary size, for
+    every secondary rate; whether that is most of it is judged per rate from the numbers."""
+    share = {}
+    for r in in_turn:
+        for s in sweep:
+            if s["E"] == r["E"] and s["n"] == r["n"] and s["vs_whole"]["rms_relative"] > 0:
+                share.setdefault(s["every"], []).append(r["vs_whole"]["rms_relative"] / s["vs_whole"]["rms_relative"])
+    if not share:
+        return ""
+    lo, hi = min(min(v) for v in share.values()), max(max(v) for v in share.values())
+    most = sorted(e for e, v in share.items() if min(v) >= 0.5)
+    less = sorted(e for e, v in share.items() if max(v) < 0.5)
+    text = (f"The exchange of 001 eq. 7 alone makes {lo:.2g}-{hi:.2g} of the sweep's RMS error at the same primary "
+            "size (a region sees its neighbours only through their displacements at the connection nodes, once per "
+            "update)")
+    if most and not less and len(most) == len(share):
+        return text + ": most of the error at every secondary rate; the lower rate adds the rest."
+    if less and len(less) == len(share):
+        return text + ": less than half at every secondary rate; most of the error comes from the lower rate."
+    parts = []
+    if most:
+        parts.append(f"most of it with the secondary region every {', '.join(map(str, most))} frames")
+    if less:
+        parts.append(f"less than half every {', '.join(map(str, less))} frames, where the lower rate makes most")
+    return text + ": " + "; ".join(parts) + "."
+
+
+def timing_note(rows) -> str:
+    """The busy-machine note of the runs' timings (pipeline.stages.machine_load): async_sim times
+    itself, so a run without a "machine" record says that its load was not recorded."""
+    return busy_note(worst(r["run"].payload.get("machine") for r in rows))
+
+
+def interpolation(rows) -> str:
+    """How the secondary values are passed on, from the runs: interpolated (001 Fig. 4) or held."""
+    kinds = sorted({bool(r.get("interpolate")) for r in rows if "interpolate" in r})
+    return " or ".join("interpolated secondary values" if k else "secondary values held between updates"
+                       for k in kinds) or "secondary values passed as the runs set"
 
 
 def table1(ctx, rows, E):
@@ -28,13 +72,13 @@ def table1(ctx, rows, E):
                     C.pct(r["vs_whole"]["rms_relative"]), C.pct(r["vs_whole"]["peak_relative"]),
                     C.pct(r["vs_exact"]["rms_relative"]), C.pct(r["vs_exact"]["peak_relative"])])
     name = f"table1_E{E / 1000:g}kPa"
-    cap = (f"Like 001 Table 1, E = {E / 1000:g} kPa, chirp 1 mm 0-5 Hz, backward Euler everywhere, interpolated "
-           "secondary values. Errors are relative to the peak force of the reference (whole model or exact). "
+    cap = (f"Like 001 Table 1, E = {E / 1000:g} kPa, {S.describe(sel)}, {interpolation(sel)}. Errors are relative to the peak force of the reference (whole model or exact). "
            "The speed gain is the whole model's time per frame over the regions' time, both measured in the same "
            "run (fastest of 20 alternating repeats); the machine is shared, so the gain against the median whole-model "
            f"time of the sweep is given too (whole-model times across runs: median {C.us(float(np.median(whole_times))):.3g} µs, range "
            f"{C.us(min(whole_times)):.3g}-{C.us(max(whole_times)):.3g} µs). Exact closed-loop spectral radius "
-           f"{first['loop_radius']:.4f} (< 1: the sampled probe coupling is stable on the exact model).")
+           f"{first['loop_radius']:.4f} (< 1: the sampled probe coupling is stable on the exact model)."
+           + (f" Times {timing_note(sel)[1:-1]}." if timing_note(sel) else ""))
     return name, write_table(ctx, name, T1_HEADERS, out, cap)
 
 
@@ -52,8 +96,10 @@ def held_table(ctx, interp, held):
     headers = ["n", "f (Hz)", "RMS error interpolated (%)", "RMS error held (%)", "peak error interpolated (%)",
                "peak error held (%)", "max |Δ²F| whole (µN)", "max |Δ²F| interpolated (µN)", "max |Δ²F| held (µN)"]
     cap = ("Secondary values interpolated (001 Fig. 4, one update late) or held between updates, E = "
-           f"{held[0]['E'] / 1000:g} kPa, chirp. max |Δ²F| is the largest second difference of the force over "
+           f"{held[0]['E'] / 1000:g} kPa, {S.chirp(held)}. max |Δ²F| is the largest second difference of the force over "
            "consecutive frames: a jump J in the force shows as about J, a smooth force as O(frame step²).")
+    paired = [by[key(h)] for h in held if key(h) in by]
+    cap += S.same_scene_clause(held, paired, "the held runs", "the interpolated ones")
     write_table(ctx, "held_vs_interpolated", headers, out, cap)
 
 
@@ -67,10 +113,11 @@ def in_turn_table(ctx, in_turn, sweep):
                    [C.pct(same[e]["vs_whole"]["rms_relative"]) if e in same else None for e in sorted(same)])
     every = sorted({s["every"] for s in sweep})
     headers = ["n", "both every frame, in turn: RMS error (%)"] + [f"secondary every {e}: RMS error (%)" for e in every]
-    cap = (f"E = {E / 1000:g} kPa, chirp. First column: primary and secondary region both solved every frame but one "
+    cap = (f"E = {E / 1000:g} kPa, {S.chirp(in_turn)}. First column: primary and secondary region both solved every frame but one "
            "after the other (001 eq. 7 with the other region's values on the right-hand side, one block Gauss-Seidel "
            "sweep per frame). Its error is that of the exchange between regions alone; the other columns add the lower "
-           "secondary rate.")
+           "secondary rate." + S.same_scene_clause(in_turn, [s for s in sweep if s["E"] == E],
+                                                   "the in-turn runs", "the sweep"))
     write_table(ctx, "exchange_error", headers, out, cap)
 
 
@@ -79,7 +126,8 @@ def dense_table(ctx, dense):
             C.pct(r["vs_whole"]["rms_relative"])] for r in sorted(dense, key=lambda r: (r["n"], -r["rate"]))]
     headers = ["n", "f (Hz)", "time/frame regions (µs)", "time/frame whole (µs)", "speed gain", "RMS error vs whole (%)"]
     cap = ("Dense Cholesky solves (the direct elimination of 001 §4, cost growing with the square of the region "
-           "size) instead of the sparse factorisation, E = 5 kPa.")
+           f"size) instead of the sparse factorisation, E = {' or '.join(f'{r:g}' for r in sorted({r['E'] / 1000 for r in dense}))} kPa, "
+           f"{S.chirp(dense)}." + (f" Times {timing_note(dense)[1:-1]}." if timing_note(dense) else ""))
     write_table(ctx, "dense_timing", headers, out, cap)
 
 
@@ -117,7 +165,8 @@ def tradeoff(ctx, rows, thresholds):
                     C.pct(r["vs_whole"]["peak_relative"]), tier])
     headers = ["E (kPa)", "n", "f (Hz)", "time/frame (µs)", "speed gain", "RMS error vs whole (%)",
                "peak error vs whole (%)", "error budget met"]
-    write_table(ctx, "tradeoff", headers, out, "Every setting of the sweep, fastest first per stiffness.")
+    write_table(ctx, "tradeoff", headers, out, "Every setting of the sweep, fastest first per stiffness."
+                + (f" Times {timing_note(rows)[1:-1]}." if timing_note(rows) else ""))
     best = {}
     for t in th:
         for E in sorted({r["E"] for r in rows}):
@@ -166,7 +215,9 @@ def force_envelope(ctx, forces):
         ax.plot(centre, 1e3 * np.asarray(env(s["force_async"])), marker=".", lw=1.0, label=C.label(r))
     ax.set_xlabel("input frequency (Hz)")
     ax.set_ylabel("peak force in the bin (mN)")
-    ax.set_title("Output force against input frequency, E = 5 kPa, chirp 1 mm (like 001 Fig. 6)", fontsize=9)
+    moduli = " or ".join(f"{e:g}" for e in sorted({r["E"] / 1000 for r in forces}))
+    ax.set_title(f"Output force against input frequency, E = {moduli} kPa, {S.chirp(forces)} (like 001 Fig. 6)",
+                 fontsize=9)
     ax.legend(fontsize=7)
     plots.save(fig, ctx.out("force_envelope.png"))
 
@@ -190,7 +241,7 @@ def report(ctx):
     force_pngs = []
     for r in forces:
         png = f"forces_n{r['n']}_every{r['every']}.png"
-        C.force_plot(ctx.out(png), r["run"], f"E = {r['E'] / 1000:g} kPa, chirp 0-5 Hz, {C.label(r)} (like 001 Fig. 7)",
+        C.force_plot(ctx.out(png), r["run"], f"E = {r['E'] / 1000:g} kPa, {S.chirp([r])}, {C.label(r)} (like 001 Fig. 7)",
                      window=(8.0, 9.0))
         force_pngs.append(png)
 
@@ -202,8 +253,7 @@ def report(ctx):
     by_n = [spread([r for r in five if r["n"] == n]) for n in sorted({r["n"] for r in five})]
     by_f = [spread([r for r in five if r["every"] == e]) for e in sorted({r["every"] for r in five})]
     lines = ["## Asynchronous regions: primary size, secondary rate and stiffness (001 Table 1, Figs. 6-7)\n",
-             "1-D bar of 40 nodes, probe spring 10 N/m at 1 kHz, chirp 1 mm from 0 to 5 Hz, backward Euler in every "
-             "region, interpolated secondary values. The paper's numeric columns did not survive the text extraction "
+             f"{S.describe(sweep)}, {interpolation(sweep)}. The paper's numeric columns did not survive the text extraction "
              "(experiments/async_table.json copies what is legible), so its findings are compared, not its numbers.\n",
              tables[E_plot][1] if E_plot in tables else "",
              "All stiffnesses: " + ", ".join(f"[{n}](async/{n}.md)" for n, _ in tables.values()) + ".\n",
@@ -213,12 +263,12 @@ def report(ctx):
              f"{min(by_f):.2g}-{max(by_f):.2g} across the primary sizes.\n",
              "Where the error comes from: with both regions solved every frame, one after the other, the RMS error is "
              + ", ".join(f"{C.pct(r['vs_whole']['rms_relative']):.2g} % (n = {r['n']})" for r in sorted(in_turn, key=lambda r: r["n"]))
-             + " ([exchange_error](async/exchange_error.md)). Most of the error is the exchange of 001 eq. 7 itself: a "
-             "region sees its neighbours only through their displacements at the connection nodes, and in this soft "
-             "bar the element joining two regions is far stiffer than the chain behind it, so one exchange per frame "
-             "moves the border only a fraction of the way to the coupled solution (block Gauss-Seidel with a slow rate). "
-             "The lower secondary rate adds to it; interpolation changes the RMS error little (it is about smoothness).\n",
-             "Fastest settings within an error budget (RMS force error vs the whole model):\n"]
+             + " ([exchange_error](async/exchange_error.md))."
+             + S.same_scene_clause(in_turn, [r for r in sweep if r["E"] in {t["E"] for t in in_turn}],
+                                   "the in-turn runs", "the sweep")
+             + " " + exchange_words(in_turn, sweep) + "\n",
+             "Fastest settings within an error budget (RMS force error vs the whole model)"
+             + (f" {timing_note(sweep)}" if timing_note(sweep) else "") + ":\n"]
     for (t, E), r in sorted(best.items()):
         lines.append(f"- ≤ {100 * t:g} % at E = {E / 1000:g} kPa: " +
                      (f"n = {r['n']}, f = {r['rate']:.3g} Hz, speed gain {fmt(r['speed_gain'])}, error "

@@ -9,7 +9,7 @@ from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.element_kinds import element_kind_names
 from pipeline.reports import dhd_common as common
-from pipeline.tables import fmt, write_table
+from pipeline.tables import either, fmt, write_table
 from pipeline.artifacts import write_text_atomic
 
 US = 1e6
@@ -139,6 +139,9 @@ def stability_facts(ctx, mesh):
         left = [e for e in range(len(tets)) if e not in removed]
         alt = min_altitude(nodes, tets[left])
         out.append({"label": f"{partition_label(run.config)}, {cut_mode(stage)}", "steps": p["solver"]["steps"], "time": p["solver"]["time"],
+                    "cut_time": cut_t,
+                    # dhd_sim's default re-estimate interval (cpp/apps/dhd_sim.md, dt_check_interval)
+                    "dt_check": (run.config.get("solver") or {}).get("dt_check_interval", 10),
                     "peak_after": float(total[after].max()), "final": float(total[-1]),
                     "kinetic_final": float(en["kinetic"][-1]), "dissipated": float(en["dissipated"][-1]),
                     "dt_first": p["solver"]["dt"], "dt_final": p["solver"]["dt_final"],
@@ -159,6 +162,11 @@ def min_altitude(nodes, tets):
     return best
 
 
+def _either(rows, key, unit) -> str:
+    """The rows' values of `key` with their unit: "0.3 s", or "0.3 or 0.4 s" where they differ."""
+    return either([r.get(key) for r in rows], lambda v: f"{v:,g}".replace(",", " "), unit)
+
+
 def write_stability(ctx, facts):
     header = ["run", "steps", "simulated (s)", "peak K + W after the cut (mJ)", "K + W at the end (mJ)",
               "kinetic at the end (J)", "dissipated (mJ)", "Δt first (ms)", "Δt at the end (ms)",
@@ -168,8 +176,10 @@ def write_stability(ctx, facts):
               f["dt_changes_after_cut"], f"{fmt(1000 * f['min_altitude_before'])} / {fmt(1000 * f['min_altitude_after'])}",
               fmt(1000 * f["max_u"])] for f in facts]
     write_table(ctx, "stability", header, table,
-                caption="The pressed cuboid cut at 0.3 s and run on to 100 000 steps: energy (kinetic K + strain W), "
-                        "the automatic step (re-estimated on the deformed mesh every 10 steps) and the smallest "
+                caption=f"The pressed cuboid cut at {_either(facts, 'cut_time', 's')} and run on to "
+                        f"{_either(facts, 'steps', 'steps')}: energy (kinetic K + strain W), "
+                        f"the automatic step (re-estimated on the deformed mesh every {_either(facts, 'dt_check', 'steps')}) "
+                        "and the smallest "
                         "element altitude of the mesh before and after the cut.")
 
 
@@ -228,7 +238,8 @@ def plot_energy(ctx, facts, fall, fall_separate):
     ax.set_xscale("log")
     ax.set_xlabel("time (s)")
     ax.set_ylabel("energy (mJ)")
-    ax.set_title("press_cut: energy over 100 000 steps (cut at 0.3 s)", fontsize=8)
+    ax.set_title(f"press_cut: energy over {_either(facts, 'steps', 'steps')} (cut at {_either(facts, 'cut_time', 's')})",
+                 fontsize=8)
     ax.legend(fontsize=6)
     ax.grid(True, alpha=0.3)
     ax = axes[1]
@@ -256,7 +267,8 @@ def haptic_rows(ctx):
                     "loose": cuts[-1]["loose_pieces"] if cuts else 0, "cut_mean": blade["seconds_mean"],
                     "cut_max": blade["seconds_max"], "p50": t["frame_seconds_p50"], "p99": t["frame_seconds_p99"],
                     "misses": t["deadline_misses"], "events": len(p["events"]),
-                    "peak": float(np.linalg.norm(np.array(p["force"]), axis=1).max())})
+                    "peak": float(np.linalg.norm(np.array(p["force"]), axis=1).max()),
+                    "rate_khz": 1e-3 / p["frame_step"] if p.get("frame_step") else None})
     return out
 
 
@@ -269,7 +281,8 @@ def write_haptic(ctx, rows):
               fmt(US * r["cut_mean"]), fmt(US * r["cut_max"]), fmt(1000 * r["p50"]), fmt(1000 * r["p99"]),
               r["misses"], r["events"], fmt(r["peak"])] for r in rows]
     write_table(ctx, "haptic", header, table,
-                caption=f"haptic_sim at 1 kHz with a blade on the tool, one thread, on {cpu_description()} (shared): "
+                caption=f"haptic_sim at {_either(rows, 'rate_khz', 'kHz')} with a blade on the tool, one thread, on "
+                        f"{cpu_description()} (shared): "
                         "a sweep is the search over the elements (every frame the tool moves) and, when it removes "
                         "elements or opens faces, the local update and the pieces pass.")
 

@@ -338,6 +338,11 @@ def _f(x, digits=2, whole_above_10=True):
     return str(int(round(x))) if whole_above_10 and abs(x) >= 10 else fmt(x, digits)
 
 
+# The layer split's error must grow at least this many times when its last layer turns cheap for
+# the summary to say the elements near the tool must stay nonlinear.
+JUMP = 3.0
+
+
 def verdict(facts: dict) -> str:
     """The opening "in short" of summary.md, in plain words, from the facts the reports left."""
     agree, differ, why = [], [], []
@@ -347,38 +352,20 @@ def verdict(facts: dict) -> str:
     part, liver = facts.get("partition"), facts.get("liver")
     if t2:
         _table2_verdict(t2, shares, agree, differ, why)
-    if part and part.get("best_family"):
+    if part and part.get("layer_jump") is not None and part["layer_jump"] >= JUMP:
         agree.append("the elements near the tool must stay nonlinear (the paper's operational region): the "
-                     "error jumps once the split reaches the tool's neighbourhood")
-        differ.append(f"the paper's layer split is not the best at equal r: {part['best_family']} gives the "
-                      f"smallest error at {part['best_wins']} of {part['shares']} shares"
-                      + (f", and on the liver {liver['best_family']} wins too" if liver and liver.get("best_family")
-                         == part["best_family"] else ""))
+                     f"layer split's error grows {_f(part['layer_jump'], 2)} times or more once its last layer, "
+                     "the one under the tool, turns cheap")
+    if part and part.get("best_family"):
+        liver_too = (f", and on the liver {liver['best_family']} wins too" if liver and liver.get("best_family")
+                     == part["best_family"] else "")
+        wins = f"{part['best_family']} gives the smallest error at {part['best_wins']} of {part['shares']} shares"
+        if part.get("best_strategy", part["best_family"].split(",")[0]) != "layer":
+            differ.append(f"the paper's layer split is not the best at equal r: {wins}{liver_too}")
+        else:
+            agree.append(f"the paper's layer split is the best at equal r: {wins}{liver_too}")
     if t1:
-        s50, p50 = t1.get("speedup_50_ours"), t1.get("speedup_50_paper")
-        if s50 is not None and p50:
-            if s50 > 1.02:
-                agree.append("linear elements make the explicit step faster")
-            if abs(s50 / p50 - 1.0) > 0.2:
-                differ.append(f"at r = 50 % our step is only {_f(s50, 3)} times as fast as all-TLED, against the "
-                              f"paper's {_f(p50, 3)}" if s50 < p50 else
-                              f"at r = 50 % our step is {_f(s50, 3)} times as fast as all-TLED, the paper's {_f(p50, 3)}")
-            else:
-                agree.append(f"at r = 50 % our step is {_f(s50, 3)} times as fast as all-TLED, the paper's {_f(p50, 3)}")
-        if t1.get("c_ours") is not None:
-            node = f"{_f(t1['node_ns'], 3)} ns per node of an all-TLED mesh"
-            if t1.get("node_ns_linear") is not None:
-                node += f", {_f(t1['node_ns_linear'], 3)} ns of an all-linear one"
-            why.append(f"a linear element costs {_f(t1['c_ours'], 2)} of a TLED element in our engine (node work "
-                       f"included), {_f(t1['c_paper'], 2)} in the paper's timings: per element and step our linear "
-                       f"elements take {_f(t1['ns_linear'], 3)} ns against {_f(t1['ns_tled'], 3)} ns for TLED "
-                       f"({_f(t1['ns_linear'] / t1['ns_tled'], 2)}×: the TLED kernel is vectorised, and the linear rows "
-                       "are bound by streaming the assembled stiffness matrix and by their instructions per block, "
-                       "see cpp/apps/dhd_sim.md), and the node phase (gather and central-difference update, "
-                       f"{node}) remains")
-            why.append(f"absolute speed is not comparable: {_f(t1['steps_per_second_tled'], 3)} steps/s all-TLED on "
-                       f"one core here against {_f(rate0, 3) if rate0 else 'the paper’s'} frames/s there, whose frames "
-                       "include rendering and an unknown number of steps")
+        _table1_verdict(t1, rate0, agree, differ, why)
     if not (agree or differ or why):
         return ""
     out = ["**In short.**\n"]
@@ -389,6 +376,49 @@ def verdict(facts: dict) -> str:
     if why:
         out.append("- *Why:* " + "; ".join(why) + ".")
     return "\n".join(out) + "\n"
+
+
+def _speed_words(s50: float) -> str:
+    """Our speed at r = 50 % against all-TLED in words, from the number (faster, slower or the same)."""
+    if s50 > 1.02:
+        return f"{_f(s50, 3)} times as fast as all-TLED"
+    if s50 < 0.98:
+        return f"slower than all-TLED ({_f(s50, 3)} times its speed)"
+    return f"as fast as all-TLED ({_f(s50, 3)} times its speed)"
+
+
+def _table1_verdict(t1: dict, rate0, agree: list, differ: list, why: list) -> None:
+    """The Table 1 part of the verdict: every claim from the measured ratios, and each one carries
+    the timing's busy-machine note (dhd_table1's "busy_note") when the sitting was disturbed."""
+    # facts from before the timing recorded the machine's load say so
+    busy = t1.get("busy_note", "(machine load not recorded for this timing)") or ""
+    first = f" {busy}" if busy else ""
+    note = f" {busy.split(':')[0]})" if ":" in busy else first
+    s50, p50 = t1.get("speedup_50_ours"), t1.get("speedup_50_paper")
+    if s50 is not None and p50:
+        if s50 > 1.02 and p50 > 1.02:
+            agree.append(f"linear elements make the explicit step faster{first}")
+        elif p50 > 1.02:
+            differ.append(f"linear elements do not make our explicit step faster, unlike the paper's{first}")
+        if abs(s50 / p50 - 1.0) > 0.2:
+            differ.append(f"at r = 50 % our step is {_speed_words(s50)}, against the paper's {_f(p50, 3)}{note}")
+        else:
+            agree.append(f"at r = 50 % our step is {_speed_words(s50)}, the paper's {_f(p50, 3)}{note}")
+    if t1.get("c_ours") is not None:
+        node = f"{_f(t1['node_ns'], 3)} ns per node of an all-TLED mesh"
+        if t1.get("node_ns_linear") is not None:
+            node += f", {_f(t1['node_ns_linear'], 3)} ns of an all-linear one"
+        ratio = t1["ns_linear"] / t1["ns_tled"]
+        kernel = ("the TLED kernel is vectorised, and the linear rows are bound by streaming the assembled "
+                  "stiffness matrix and by their instructions per block, see cpp/apps/dhd_sim.md")
+        why.append(f"a linear element costs {_f(t1['c_ours'], 2)} of a TLED element in our engine (node work "
+                   f"included), {_f(t1['c_paper'], 2)} in the paper's timings: per element and step our linear "
+                   f"elements take {_f(t1['ns_linear'], 3)} ns against {_f(t1['ns_tled'], 3)} ns for TLED "
+                   f"({_f(ratio, 2)}×" + (f": {kernel}" if ratio > 0.3 else "") + "), and the node phase "
+                   f"(gather and central-difference update, {node}) remains{note}")
+        why.append(f"absolute speed is not comparable: {_f(t1['steps_per_second_tled'], 3)} steps/s all-TLED on "
+                   f"one core here{note} against {_f(rate0, 3) if rate0 else 'the paper’s'} frames/s there, whose "
+                   "frames include rendering and an unknown number of steps")
 
 
 def _table2_verdict(t2: dict, shares: str, agree: list, differ: list, why: list) -> None:
@@ -481,6 +511,41 @@ def describe_partition(partition: dict, small_strain=None) -> dict:
         return {"strategy": "strain", "requested_r": float(p["linear_fraction"]) if "linear_fraction" in p
                 else None, "cheap_kind": cheap, "nonlinear_kind": nonlinear}
     return {"strategy": kind, "requested_r": None, "cheap_kind": cheap, "nonlinear_kind": nonlinear}
+
+
+SPLIT_RULES = {"layer": "the lowest elements", "distance": "the elements farthest from the operating point",
+               "strain": "the least strained elements"}
+
+
+def split_words(rows) -> str:
+    """The split the hybrid runs of `rows` asked for, in words, from their configs: "layer split
+    (the lowest elements linear, 000 Fig. 10)"; every distinct (strategy, distance measure, cheap
+    kind) named once."""
+    return split_phrase([(x["strategy"], x["run"].config.get("partition"), x["cheap_kind"]) for x in rows
+                         if 0 < x["cheap_elements"] < x["elements"]])
+
+
+def split_phrase(splits) -> str:
+    """[(strategy, partition config, cheap kind)] in words, each distinct split once."""
+    kinds = []
+    for strategy, partition, cheap in splits:
+        measure = (partition or {}).get("distance", "euclidean")
+        key = (strategy, measure if strategy == "distance" else None, cheap)
+        if key not in kinds:
+            kinds.append(key)
+    out = []
+    for strategy, measure, cheap in kinds:
+        rule = SPLIT_RULES.get(strategy, f"the elements the {strategy} rule picks")
+        if measure:
+            rule += f" ({measure} distance)"
+        out.append(f"{strategy} split ({rule} {cheap}" + (", 000 Fig. 10)" if strategy == "layer" else ")"))
+    return " and ".join(out) or "no hybrid run"
+
+
+def cheap_kinds(rows) -> str:
+    """The cheap element kind(s) the runs use: "linear", or "linear or corotational"."""
+    kinds = sorted({x["cheap_kind"] for x in rows if x["cheap_elements"] > 0})
+    return " or ".join(kinds) or "cheap"
 
 
 def split_record(config: dict, payload: dict) -> dict:

@@ -12,6 +12,7 @@ paper points exist for r = 10–40 % only."""
 from pipeline import plots
 from pipeline.reports import dhd_common as common
 from pipeline.reports.dhd_partition import family_rows
+from pipeline.stages.machine_load import busy_note
 from pipeline.tables import fmt, write_table
 
 
@@ -40,6 +41,20 @@ def paper_table_names(paper: dict) -> dict:
             if name in ("table2", "table3") and isinstance(t, dict) and "applied_displacement" in t}
 
 
+def front_sentence(where: str, front, pts, names: dict, fam_on_front: dict) -> str:
+    """The front in words, its ends named from the points themselves (fastest, most accurate)."""
+    n = len(front)
+    if n == 0:
+        return f"At {where} there is no configuration."
+    fastest = min(front, key=lambda i: pts[i][0])
+    accurate = min(front, key=lambda i: pts[i][1])
+    text = f"At {where}, the front has {n} point{'s' if n != 1 else ''}"
+    text += (f" ({names[fastest]})" if n == 1 else
+             f" ({names[fastest]} the fastest, {names[accurate]} the most accurate)")
+    mixed = ", ".join(f"{v} from {k}" for k, v in sorted(fam_on_front.items(), key=lambda kv: -kv[1]))
+    return text + (f"; mixed configurations: {mixed}." if mixed else "; no mixed configuration is on it.")
+
+
 def report(ctx):
     unit, unit_scale = common.display_unit(ctx)
     data = family_rows(ctx, ctx.params["stages"])
@@ -47,7 +62,10 @@ def report(ctx):
     loads = sorted({load for fam in data.values() for load in fam})
     paper = paper_points(ctx.experiment.get("paper", {}))
     table_names = paper_table_names(ctx.experiment.get("paper", {}))
-    uniform, mixed = common.cost_model(ctx.runs(ctx.params.get("timing", "timing"))[0].payload)
+    timing = ctx.runs(ctx.params.get("timing", "timing"))[0].payload
+    uniform, mixed = common.cost_model(timing)
+    busy = busy_note(timing.get("machine"))
+    note = f" {busy}" if busy else ""
     t_tled = uniform["tled"]
 
     fig, axes = plots.plt.subplots(1, len(loads), figsize=(5.4 * len(loads), 5.4), dpi=110, squeeze=False)
@@ -67,10 +85,12 @@ def report(ctx):
         front = common.pareto_front([p[0] for p in pts], [p[1] for p in pts])
         ax.plot([pts[i][0] for i in front], [100 * pts[i][1] for i in front], "k-", lw=0.8, alpha=0.6,
                 label="Pareto front (ours)")
+        names = {}
         for i in front:
             t, e, label, x = pts[i]
             name = ("all TLED" if x["cheap_elements"] == 0 else f"all {x['cheap_kind']}" if x["tled_elements"] == 0
                     else label)
+            names[i] = name
             front_rows.append([f"{fmt(load * unit_scale)} {unit}", name, f"{int(round(100 * x['r']))} %",
                                t, x["model_seconds_per_step"] * 1e6, common.pct(e, 2)])
         pp, table = None, None
@@ -96,15 +116,13 @@ def report(ctx):
             x = pts[i][3]
             if 0 < x["cheap_elements"] < x["elements"]:
                 fam_on_front[pts[i][2]] = fam_on_front.get(pts[i][2], 0) + 1
-        words.append(f"At {fmt(load * unit_scale)} {unit}, the front has {len(front)} points (all-TLED and "
-                     "all-linear at its ends): "
-                     + ", ".join(f"{v} from {k}" for k, v in sorted(fam_on_front.items(), key=lambda kv: -kv[1]))
-                     + ".")
+        words.append(front_sentence(f"{fmt(load * unit_scale)} {unit}", front, pts, names, fam_on_front) + note)
     common.save(fig, ctx, "pareto.png")
     md = write_table(ctx, "pareto_front", ["applied", "family", "r", "time per step / all-TLED",
                                            "time per step (µs, model)", "e (%)"], front_rows,
                      "**The configurations on the Pareto front** (no other configuration is both faster "
-                     "and more accurate), per applied displacement. Time per step from the cost model.")
+                     "and more accurate), per applied displacement. Time per step from the cost model"
+                     + (f"{note}." if busy else "."))
     cost_rows = [[f"all {k}", 1e6 * t, t / t_tled, None, None] for k, t in uniform.items()]
     for run, measured, modelled in mixed:
         d = common.describe_partition(run["partition"])
@@ -113,7 +131,7 @@ def report(ctx):
     cost_md = write_table(ctx, "pareto_cost_model", ["run", "time per step (µs)", "/ all-TLED",
                                                      "model (µs)", "model − measured (%)"], cost_rows,
                           "**Cost model of the time axis**: uniform runs (best of the repeats, one thread, "
-                          "same mesh and scene) and the mixed runs that check it.")
+                          "same mesh and scene) and the mixed runs that check it" + (f"{note}." if busy else "."))
     lines = ["### Run time against error\n",
              "![pareto](dhd/pareto.png)\n",
              "Every configuration of the partition comparison as (time per step relative to all-TLED, "

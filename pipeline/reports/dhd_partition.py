@@ -13,13 +13,20 @@ error budget (params "budgets", fractions) the table gives the largest speed-up 
 each family reaches without exceeding it, interpolating linearly between shares. Times per step
 come from the cost model of dhd_common.cost_model (params "timing" names the dhd_timing stage)."""
 
+import json
+
 from pipeline import plots
 from pipeline.reports import dhd_common as common
+from pipeline.stages.machine_load import busy_note
 from pipeline.tables import fmt, write_table
 
 
 FAMILY_ORDER = [("layer", "linear"), ("distance", "linear"), ("strain", "linear"),
                 ("layer", "corotational"), ("distance", "corotational"), ("strain", "corotational")]
+
+
+# A family is "fastest" only where its speed-up over all-TLED exceeds 1 by more than this.
+BEATS = 0.005
 
 
 def family_label(strategy: str, cheap_kind: str) -> str:
@@ -45,18 +52,47 @@ def family_rows(ctx, stages):
     groups = {}
     for g in rows:
         if 0 < g["cheap_elements"] < g["elements"]:
-            groups.setdefault((g["strategy"], g["cheap_kind"]), {}).setdefault(round(g["applied"], 12), []).append(g)
-    keys = [k for k in FAMILY_ORDER if k in groups] + sorted(k for k in groups if k not in FAMILY_ORDER)
+            groups.setdefault(_family_key(g), {}).setdefault(round(g["applied"], 12), []).append(g)
+    rank = {k: i for i, k in enumerate(FAMILY_ORDER)}
+    keys = sorted(groups, key=lambda k: (rank.get(k[:2], len(rank)), k))
+    labels = _family_labels(keys)
     out = {}
-    for strategy, kind in keys:
-        by_load = groups[(strategy, kind)]
+    for key in keys:
+        strategy, kind, _ = key
+        by_load = groups[key]
         for load, group in by_load.items():
             for end in (ends.get((load, None)), ends.get((load, kind))):
                 if end is not None:
                     group.append(end)
             by_load[load] = sorted(group, key=lambda x: x["r"])
-        out[family_label(strategy, kind)] = by_load
+        out[labels[key]] = by_load
     return out
+
+
+def _family_key(g):
+    """(strategy, cheap kind, the rest of the partition config but the share): runs of one family
+    differ in r only."""
+    rest = {k: v for k, v in (g["run"].config.get("partition") or {}).items() if k != "linear_fraction"}
+    return (g["strategy"], g["cheap_kind"], json.dumps(rest, sort_keys=True))
+
+
+def _family_labels(keys) -> dict:
+    """A label per family naming what its config asks for: "distance, linear", with the settings
+    that tell it apart from a family of the same strategy and kind ("distance, linear (distance
+    geodesic)") so that no two families share a label."""
+    labels = {}
+    for key in keys:
+        strategy, kind, rest = key
+        twins = [k for k in keys if k[:2] == (strategy, kind)]
+        label = family_label(strategy, kind)
+        if len(twins) > 1:
+            mine = json.loads(rest)
+            others = [json.loads(k[2]) for k in twins if k != key]
+            differ = sorted(n for n in set(mine) | {n for o in others for n in o}
+                            if any(o.get(n) != mine.get(n) for o in others))
+            label += " (" + ", ".join(f"{n.replace('_', ' ')} {mine.get(n, 'default')}" for n in differ) + ")"
+        labels[key] = label
+    return labels
 
 
 def shares_at(data, load):
@@ -97,12 +133,46 @@ def best_speedup_within(points, budget):
     return best
 
 
+def budget_sentence(budget, cells, where, note="") -> str:
+    """Which family is fastest within an error budget at each load: cells are (load label,
+    family, speed-up or None); a family is named only where it beats all-TLED."""
+    parts = []
+    for w in where:
+        cands = [(speedup, family) for load, family, speedup in cells if load == w and speedup is not None]
+        best = max(cands) if cands else None
+        if best and best[0] > 1.0 + BEATS:
+            parts.append(f"the fastest at {w} is {best[1]} ({fmt(best[0], 3)}× all-TLED)")
+        else:
+            parts.append(f"nothing beats all-TLED at {w}")
+    return f"Within e ≤ {fmt(100 * budget)} %, " + "; ".join(parts) + note + "."
+
+
+def layer_jump(data, loads):
+    """How much the layer split's error grows from its largest mixed share to all-cheap, the step
+    at which the top layer under the tool turns cheap too: the smallest such factor over the loads
+    (None without a layer family)."""
+    jumps = []
+    for label, fam in data.items():
+        if not label.startswith("layer,"):
+            continue
+        for load in loads:
+            g = fam.get(load, [])
+            mixed = [x for x in g if 0 < x["cheap_elements"] < x["elements"]]
+            full = [x for x in g if x["tled_elements"] == 0]
+            if mixed and full and mixed[-1]["error"]["rel_mean"] > 0:
+                jumps.append(full[0]["error"]["rel_mean"] / mixed[-1]["error"]["rel_mean"])
+    return min(jumps) if jumps else None
+
+
 def report(ctx):
     unit, unit_scale = common.display_unit(ctx)
     budgets = ctx.params.get("budgets", [0.02, 0.05, 0.10])
     data = family_rows(ctx, ctx.params["stages"])
     labels = list(data)
-    uniform, _ = common.cost_model(ctx.runs(ctx.params.get("timing", "timing"))[0].payload)
+    timing = ctx.runs(ctx.params.get("timing", "timing"))[0].payload
+    uniform, _ = common.cost_model(timing)
+    busy = busy_note(timing.get("machine"))
+    note = f" {busy}" if busy else ""
     for fam in data.values():
         for group in fam.values():
             for x in group:
@@ -132,10 +202,9 @@ def report(ctx):
                          f"**Partition strategies at equal share r, top centre pushed down "
                          f"{fmt(load * unit_scale)} {unit}.** Error e = Σ|u − u_TLED| / Σ|u_TLED| against "
                          f"the all-TLED run, both after {' or '.join(str(n) for n in steps)} steps; time per step "
-                         "relative to all-TLED from the cost model "
-                         f"(all-TLED {fmt(1e6 * uniform['tled'], 3)} µs, all-linear "
-                         f"{fmt(1e6 * uniform.get('linear', float('nan')), 3)} µs, all-corotational "
-                         f"{fmt(1e6 * uniform.get('corotational', float('nan')), 3)} µs per step, one thread).")
+                         "relative to all-TLED from the cost model ("
+                         + ", ".join(f"all-{k} {fmt(1e6 * t, 3)} µs" for k, t in uniform.items())
+                         + f" per step, one thread){note}.")
         mds.append(md)
 
     # Error budgets: the speed-up each family reaches.
@@ -150,7 +219,7 @@ def report(ctx):
                             + [f"speed-up within e ≤ {fmt(100 * b)} %" for b in budgets], budget_rows,
                             "**Largest speed-up over all-TLED (time per step ratio, cost model) each family "
                             "reaches while its error stays within the budget** (linear interpolation between the "
-                            "measured shares; 1: only all-TLED stays within it).")
+                            "measured shares; 1: only all-TLED stays within it)" + (f"{note}." if busy else "."))
 
     # Plot: error vs r per family, one panel per load.
     fig, axes = plots.plt.subplots(1, len(loads), figsize=(5.2 * len(loads), 4.2), dpi=110, squeeze=False)
@@ -184,18 +253,12 @@ def report(ctx):
         words.append(f"At {fmt(load * unit_scale)} {unit} the smallest error at equal r comes from: {ranking} "
                      "of the shares.")
     for b_i, b in enumerate(budgets):
-        parts = []
-        for load in loads:
-            cands = [(row[2 + b_i], row[1]) for row in budget_rows
-                     if row[0] == f"{fmt(load * unit_scale)} {unit}" and row[2 + b_i] is not None]
-            if cands:
-                best = max(cands)
-                parts.append(f"{best[1]} at {fmt(load * unit_scale)} {unit} ({fmt(best[0], 3)}× all-TLED)")
-        if parts:
-            words.append(f"Within e ≤ {fmt(100 * b)} % the fastest is " + "; ".join(parts) + ".")
+        where = [f"{fmt(load * unit_scale)} {unit}" for load in loads]
+        words.append(budget_sentence(b, [(row[0], row[1], row[2 + b_i]) for row in budget_rows], where, note))
     lines = ["### Partition strategy at equal share\n"] + mds + [budget_md]
     lines.append("Plot: [dhd/partition_error.png](dhd/partition_error.png).\n")
     lines.append(" ".join(words) + "\n")
     best = max(total_wins, key=total_wins.get) if total_wins else None
-    facts = {"best_family": best, "best_wins": total_wins.get(best), "shares": total_shares}
+    facts = {"best_family": best, "best_wins": total_wins.get(best), "shares": total_shares,
+             "best_strategy": best.split(",")[0] if best else None, "layer_jump": layer_jump(data, loads)}
     common.write_section(ctx, "partition", "\n".join(lines), facts)

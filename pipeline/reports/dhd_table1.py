@@ -17,6 +17,7 @@ from pipeline import plots
 from pipeline.hashing import file_hash
 from pipeline.paths import BIN
 from pipeline.reports import dhd_common as common
+from pipeline.stages.machine_load import busy_note
 from pipeline.tables import fmt, write_table
 
 
@@ -28,6 +29,15 @@ def relative_cost(shares, times):
     t0 = t[np.argmin(r)]
     y = t / t0 - (1.0 - r)
     return float((r @ y) / (r @ r)) if r @ r > 0 else None
+
+
+def cheaper_or_dearer(ratio: float) -> str:
+    """A cost ratio (linear / TLED) in words, from the number itself."""
+    if ratio < 0.98:
+        return f"linear elements {fmt(1 / ratio, 3)}× cheaper"
+    if ratio > 1.02:
+        return f"linear elements {fmt(ratio, 3)}× dearer"
+    return "no measurable difference"
 
 
 def report(ctx):
@@ -43,6 +53,10 @@ def report(ctx):
     rows_data.sort(key=lambda x: x["r"])
     base = next(x for x in rows_data if x["r"] == 0.0)["run"]["steps_per_second"]
     f0 = paper_rate.get(0)
+    # Every speed figure below carries this note when the sitting was disturbed.
+    busy = busy_note(timing.get("machine"))
+    # the full conditions once per paragraph, then the short form
+    again = busy.split(":")[0] + ")" if ":" in busy else busy
     body = []
     for x in rows_data:
         run = x["run"]
@@ -57,12 +71,16 @@ def report(ctx):
                "real-time factor (simulated s per s)", "frame rate (paper, Hz)", "speed-up vs r = 0 (paper)"]
     first = runs[0]
     n = sum(first["counts"].values())
+    mixed = [x["run"] for x in rows_data if 0 < x["r"] < 1]
+    split = common.split_phrase([(d["strategy"], run["partition"], d["cheap_kind"]) for run in mixed
+                                 for d in [common.describe_partition(run["partition"], small_strain)]])
     caption = (f"**Table 1: speed against the share of linear elements**, {n} tets, one thread, "
                f"{first['steps']} steps per measurement, best of {timing['repeats']} interleaved repeats "
-               f"(the least disturbed; median beside it; {timing['cpu']}). Layer split (lowest elements linear). Equivalent frame rate: one "
+               f"(the least disturbed; median beside it; {timing['cpu']}). Mixed runs: {split}. Equivalent frame rate: one "
                "explicit step per frame, rendering excluded (the paper does not say how many steps make "
                "a frame). Real-time factor: simulated time advanced per wall-clock second (steps/s × Δt, "
-               f"Δt = {fmt(first['dt'] * 1e3)} ms). The paper's columns are copied from 000 Table 1.")
+               f"Δt = {fmt(first['dt'] * 1e3)} ms). The paper's columns are copied from 000 Table 1."
+               + (f" Our columns were {busy[1:-1]}." if busy else ""))
     md = write_table(ctx, "table1", headers, body, caption)
 
     # Cost of a linear element relative to a TLED element: ours from steps/s, the paper's from
@@ -90,7 +108,8 @@ def report(ctx):
         bench_md = write_table(ctx, "table1_bench", ["partition", "r", "threads", "steps", "steps/s",
                                                     "vs all-TLED", "ns per element"], bench_rows,
                                "`dhd_sim --bench` on the same scene: four partitions measured in one process "
-                               "(one sample each; the mixed one uses the engine's default distance split).")
+                               "(one sample each; the mixed one uses the engine's default distance split)"
+                               + (f" {busy_note(bench.get('machine'))}." if busy_note(bench.get("machine")) else "."))
     except KeyError:
         pass
 
@@ -123,19 +142,22 @@ def report(ctx):
         s50 = at50["run"]["steps_per_second"] / base
         p50 = paper_rate.get(50)
         words.append(f"At r = 50 % we measure a speed-up of {fmt(s50, 3)} over all-TLED"
+                     + (f" {busy}" if busy else "")
                      + (f"; the paper reports {fmt(p50)}/{fmt(f0)} = {fmt(p50 / f0, 3)}." if p50 and f0 else "."))
     words.append(f"All-TLED runs at {fmt(base, 4)} steps/s on one thread, i.e. {fmt(1e6 / base, 3)} µs per step "
-                 f"for {n} tets" + (f" (the paper: {fmt(f0)} Hz)." if f0 else "."))
+                 f"for {n} tets" + (f" {again if at50 else busy}" if busy else "") + (f" (the paper: {fmt(f0)} Hz)." if f0 else "."))
     if c_ours is not None and c_paper is not None:
         words.append(f"Fitting t(r) = t(0)((1 − r) + c r) to the times per step gives c = {fmt(c_ours, 2)} for "
                      f"our engine (a linear element plus its share of the node work costs {fmt(c_ours, 2)} of a "
-                     f"TLED one) and c = {fmt(c_paper, 2)} for the paper's frame times.")
+                     f"TLED one: {cheaper_or_dearer(c_ours)}) and c = {fmt(c_paper, 2)} for the paper's frame times"
+                     + (f" {again}." if busy else "."))
     if ns_tled and ns_lin:
         words.append(f"The element phase alone: {fmt(ns_tled, 3)} ns per TLED element and step, {fmt(ns_lin, 3)} ns "
-                     f"per linear element (the assembled linear rows; ratio {fmt(ns_lin / ns_tled, 2)}); the node "
+                     f"per linear element (the assembled linear rows; ratio {fmt(ns_lin / ns_tled, 2)}: "
+                     f"{cheaper_or_dearer(ns_lin / ns_tled)}); the node "
                      f"phase (gather and central-difference update) takes {fmt(node_ns, 3)} ns per node of an "
                      f"all-TLED mesh and {fmt(node_ns_linear, 3)} ns per node of an all-linear one, whose nodes "
-                     "have no corner forces to gather.")
+                     "have no corner forces to gather" + (f" {again}." if busy else "."))
     if timing.get("binary_sha256") and (BIN / "dhd_sim").exists() and file_hash(BIN / "dhd_sim") != timing["binary_sha256"]:
         words.append("(Note: these timings were measured with an earlier build of dhd_sim.)")
     lines = ["### Table 1: speed against the share of linear elements\n", md,
@@ -146,5 +168,5 @@ def report(ctx):
              "speedup_50_paper": (paper_rate[50] / f0) if (50 in paper_rate and f0) else None,
              "c_ours": c_ours, "c_paper": c_paper, "ns_tled": ns_tled, "ns_linear": ns_lin, "node_ns": node_ns,
              "node_ns_linear": node_ns_linear,
-             "steps_per_second_tled": base}
+             "steps_per_second_tled": base, "busy_note": busy}
     common.write_section(ctx, "table1", "\n".join(lines), facts)

@@ -54,9 +54,11 @@ def report(ctx):
     state_word = words_mod.state_word(state, steps)
 
     # ---- the main tables
-    headers = ["share of linear elements r", "linear elements", "TLED elements", "mean error e (ours, %)",
+    all_rows = [g for load in loads for g in by_load[load]]
+    split, cheap = common.split_words(all_rows), common.cheap_kinds(all_rows)
+    headers = [f"share of {cheap} elements r", f"{cheap} elements", "TLED elements", "mean error e (ours, %)",
                "mean error (paper, %)", "mean |Δu| (µm)", "max |Δu| (µm)", "mean |Δu| / applied (%)",
-               "largest linear ‖∇u‖ (%)"]
+               f"largest {cheap} ‖∇u‖ (%)"]
     md_tables = []
     for n, load in enumerate(loads):
         name = f"table{n + 2}"
@@ -68,11 +70,11 @@ def report(ctx):
                          ref_paper.get(rp), g["error"]["mean_diff"] * 1e6, g["error"]["max_diff"] * 1e6,
                          common.pct(g["error"]["rel_applied"], 3), _small_strain_pct(g)])
         caption = (f"**Table {n + 2}: DHD-FEA vs. all-TLED, top centre pushed down {fmt(load * unit_scale)} {unit}**, "
-                   f"layer split (the lowest elements linear, 000 Fig. 10), "
+                   f"{common.split_words(by_load[load])}, "
                    f"{words_mod.settle_caption(state, steps, unit_scale, unit)}. "
                    "e = Σ_nodes |u − u_TLED| / Σ_nodes |u_TLED| (experiments/dhd.md). The last column is the "
-                   "largest deformation any linear element reached in the run (small_strain_check: 000 §2.2.2 "
-                   "takes them as valid below 10 %). The paper's column is "
+                   f"largest deformation any {cheap} element reached in the run (small_strain_check: 000 §2.2.2 "
+                   f"takes them as valid below {limit_words(by_load[load])}). The paper's column is "
                    f"copied from 000 Table {n + 2} ('Mean Error', displacement {fmt(load * unit_scale)} in an "
                    "unstated unit).")
         md_tables.append(write_table(ctx, name, headers, body, caption))
@@ -120,7 +122,7 @@ def report(ctx):
     metric_rows = [[load * unit_scale, g["r"], g["cheap_elements"]] + [g["error"][k] for k in METRIC_KEYS]
                    for load in loads for g in by_load[load]]
     write_table(ctx, "table2_3_metrics",
-                [f"applied ({unit})", "r", "linear elements", "Σ|Δu|/Σ|u_TLED|", "mean|Δu|/applied", "RMS ratio",
+                [f"applied ({unit})", "r", f"{cheap} elements", "Σ|Δu|/Σ|u_TLED|", "mean|Δu|/applied", "RMS ratio",
                  "max ratio", "mean per-node ratio", "mean |Δu| (m)", "max |Δu| (m)", "mean |u_TLED| (m)"],
                 metric_rows, "Every error normalisation of Tables 2–3, settled runs (fractions, not percent).")
 
@@ -140,9 +142,9 @@ def report(ctx):
             ax.plot(list(p), list(p.values()), "s--", color=f"C{n}", mfc="none",
                     label=f"paper Table {n + 2} ({fmt(load * unit_scale)}, unit not given)")
     ax.set_yscale("log")
-    ax.set_xlabel("share of linear elements r (%)")
+    ax.set_xlabel(f"share of {cheap} elements r (%)")
     ax.set_ylabel("mean error e (%)")
-    ax.set_title("DHD-FEA against all-TLED, layer split", fontsize=10)
+    ax.set_title(f"DHD-FEA against all-TLED, {split}", fontsize=10)
     ax.legend(fontsize=7)
     common.save(fig, ctx, "table2_3_error.png")
 
@@ -157,7 +159,7 @@ def report(ctx):
                          f"({state_word}) is {ours}; the paper reports {', '.join(f'{v} %' for v in p.values())}.")
         full = g.get(100)
         if full:
-            words.append(f"All-linear (r = 100 %) differs from all-TLED by {fmt(100 * full['error']['rel_mean'], 3)} % "
+            words.append(f"All-{cheap} (r = 100 %) differs from all-TLED by {fmt(100 * full['error']['rel_mean'], 3)} % "
                          "there.")
     trend = _trend(by_load, paper, loads, unit_scale)
     if len(loads) >= 2:
@@ -194,7 +196,7 @@ def report(ctx):
                          + words_mod.transient_why(moving.get(a0), tolerance, settled_share))
             transient_facts = {"alpha": a0, "grows": t_grow, "moving": moving.get(a0) is not None
                                and moving[a0] > tolerance}
-    lines = ["### Tables 2–3: error against the share of linear elements\n"] + md_tables
+    lines = [f"### Tables 2–3: error against the share of {cheap} elements\n"] + md_tables
     if transient_md:
         lines.append(transient_md)
     lines.append("Plot: [dhd/table2_3_error.png](dhd/table2_3_error.png); every normalisation: "
@@ -220,6 +222,13 @@ def report(ctx):
     common.write_section(ctx, "table2", "\n".join(lines), facts)
 
 
+def limit_words(rows) -> str:
+    """The small-strain limit the runs checked against (their small_strain_check blocks)."""
+    limits = sorted({g["run"].payload["small_strain_check"]["limit"] for g in rows
+                     if g["run"].payload.get("small_strain_check")})
+    return " or ".join(f"{fmt(100 * v)} %" for v in limits) if limits else "a limit the runs did not record"
+
+
 def _small_strain_pct(g):
     """The run's largest small-strain deformation in percent (None: an all-TLED run, or a run
     from before the check existed)."""
@@ -241,11 +250,11 @@ def _small_strain_sentence(by_load, loads, unit_scale, unit) -> str:
     limit = (broken or held)[0][2]["limit"]
     if not broken:
         top = max(c["largest"] for _, _, c in held)
-        return (f"000 §2.2.2's condition held in every hybrid run: no linear element deformed beyond "
+        return (f"000 §2.2.2's condition held in every hybrid run: no small-strain element deformed beyond "
                 f"{fmt(100 * top, 2)} % (limit {fmt(100 * limit)} %).")
     where = ", ".join(f"r = {int(round(100 * r))} % at {fmt(load * unit_scale)} {unit} ({fmt(100 * c['largest'], 2)} %)"
                       for load, r, c in broken)
-    return (f"000 §2.2.2's condition (linear elements below {fmt(100 * limit)} % deformation) was broken in "
+    return (f"000 §2.2.2's condition (small-strain elements below {fmt(100 * limit)} % deformation) was broken in "
             f"{len(broken)} of {len(broken) + len(held)} hybrid runs: {where}.")
 
 

@@ -67,7 +67,7 @@ def settle_sentence(state: Optional[dict], unit_scale: float, unit: str) -> str:
                 f"is {e} % ({where}), within the {fmt(100 * state['tolerance'])} % taken as settled.")
     return (f"The runs of the tables have not settled: against Newton's static solution they differ by up to {e} % "
             f"({where}), more than the {fmt(100 * state['tolerance'])} % taken as settled, so their errors mix the "
-            "linear elements' own error with a difference in motion.")
+            "cheap elements' own error with a difference in motion.")
 
 
 def trend_clause(ours_grow: bool, ours_fall, paper_grow: Optional[bool]) -> str:

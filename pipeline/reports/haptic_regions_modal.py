@@ -7,8 +7,8 @@ import numpy as np
 from pipeline import plots
 from pipeline.bench import cpu_description
 from pipeline.reports.haptic_regions import errors, runs_of
-from pipeline.reports.haptic_regions_liver import fine_runs, input_label, realtime_line
-from pipeline.tables import write_table
+from pipeline.reports.haptic_regions_liver import LAW, fine_runs, input_label, period_words, realtime_line
+from pipeline.tables import either, write_table
 
 SCENES = ("cube", "liver")
 SCENE_NAME = {"cube": "paper's cuboid", "liver": "liver"}
@@ -48,8 +48,32 @@ def rows_of(ctx):
                              "mean": p["timing"]["frame_seconds_mean"], "whole_mean": w["timing"]["frame_seconds_mean"],
                              "interface_ms": 1e3 * reg["interface_seconds_total"] / frames,
                              "build_s": reg["build_seconds_total"], "builds": reg["builds"],
-                             "force": f, "whole": fw, "time": np.array(p["time"])})
+                             "force": f, "whole": fw, "time": np.array(p["time"]), **scene_of(run)})
     return sorted(rows, key=lambda r: (SCENES.index(r["scene"]), INPUTS.index(r["input"]), far_order(r["far"])))
+
+
+def scene_of(run) -> dict:
+    """The scene values a caption states, from one region run: radius, law, probe spring and contact."""
+    probe = run.config.get("probe") or {}
+    law = law_of(run)
+    return {"radius": (run.payload.get("regions") or {}).get("radius"), "law": LAW.get(law, law),
+            "probe": probe.get("stiffness"), "contact": probe.get("contact")}
+
+
+def law_of(run):
+    return ((run.config.get("model") or {}).get("material") or {}).get("model")
+
+
+def scene_caption(rows) -> str:
+    """"cuboid: radius 2.5 cm, neo-Hookean, probe 100 N/m, grasp; liver: ...", every value from the
+    runs of each scene ("2.5 or 3.5 cm" where they differ)."""
+    parts = []
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        sel = [r for r in rows if r["scene"] == scene]
+        parts.append(f"{SCENE_NAME[scene]}: radius {either([r['radius'] for r in sel], lambda v: f'{100 * v:g}', 'cm')}, "
+                     f"{either([r['law'] for r in sel], str)}, probe {either([r['probe'] for r in sel], unit='N/m')}, "
+                     f"{either([r['contact'] for r in sel], str)}")
+    return "; ".join(parts)
 
 
 def fars(rows, scene):
@@ -86,6 +110,25 @@ def forces_plot(ctx, rows):
     plots.save(fig, ctx.out("regions_modal_forces.png"))
 
 
+def fine_caption(ctx) -> str:
+    """The refined liver's scene from its region runs: tets, probe, law, input and its duration,
+    the interface product's precision."""
+    runs = [run for run, *_ in fine_runs(ctx, ("fine_guyan", "fine_modal"))]
+
+    def words(vals):
+        return either([str(v) for v in vals if v is not None], str)
+    probes = [run.config.get("probe") or {} for run in runs]
+    springs = [f"{p['stiffness']:g}" for p in probes if p.get("stiffness") is not None]
+    durations = [f"{run.payload['time'][-1]:.3g}" for run in runs if run.payload.get("time")]
+    laws = [LAW.get(law_of(run), law_of(run)) for run in runs]
+    precisions = [(run.payload["regions"] or {}).get("precision") for run in runs]
+    return (f"Refined liver ({words((run.payload.get('model') or {}).get('tets') for run in runs)} tets), "
+            f"{words(p.get('contact') for p in probes)} probe {words(springs)} N/m, {words(laws)}, "
+            f"{words(input_label(run.config['input']) for run in runs if 'input' in run.config)} for "
+            f"{words(durations)} s, condensed "
+            f"regions with a {words(precisions)}-precision interface product")
+
+
 def fine_rows(ctx):
     """The refined liver: Guyan against Guyan + modes, each at the far-field recovery it ran with,
     against the whole model's chirp; error and frame time."""
@@ -97,6 +140,7 @@ def fine_rows(ctx):
                     "interface": (reg["primary"] or {}).get("interface_nodes"), "rms": rms, "peak": peak,
                     "mean": t["frame_seconds_mean"], "p50": t["frame_seconds_p50"], "p99": t["frame_seconds_p99"],
                     "misses": t["deadline_misses"], "frames": len(p["force"]), "build_s": reg["build_seconds_total"],
+                    "period": p.get("frame_step"),
                     "whole_mean": w["timing"]["frame_seconds_mean"], "events": len(p["events"])})
     return sorted(out, key=lambda r: (-r["radius"], far_order(r["far"]), r["every"]))
 
@@ -110,8 +154,7 @@ def report(ctx):
                 [[SCENE_NAME[r["scene"]], r["input"], r["far"], r["rms"], r["peak"], 1e3 * r["mean"],
                   1e3 * r["whole_mean"], r["interface_ms"], r["builds"], r["build_s"], r["events"], r["whole_events"]]
                  for r in rows],
-                "Condensed regions (cuboid: radius 2.5 cm, the paper's neo-Hookean law, probe 100 N/m; liver: radius "
-                "3.5 cm, stable neo-Hookean, probe 20 N/m; grasp) against the whole model with the same input. Errors "
+                f"Condensed regions ({scene_caption(rows)}) against the whole model with the same input. Errors "
                 "relative to the whole model's peak |F|. The interface force includes the modes' coupling; the build "
                 "time includes the modes' eigensolution. The first region is built before the first frame; a region "
                 "built as the contact slides is in that frame's time. One thread on "
@@ -121,13 +164,12 @@ def report(ctx):
     if fine:
         write_table(ctx, "regions_modal_fine",
                     ["radius (m)", "far field", "recovered every (frames)", "interface nodes", "RMS error (%)",
-                     "peak error (%)", "frame mean (ms)", "frame p50 (ms)", "frame p99 (ms)", "frames over 1 ms",
+                     "peak error (%)", "frame mean (ms)", "frame p50 (ms)", "frame p99 (ms)", "frames over the frame period",
                      "region build (s)", "whole mean (ms)", "events"],
                     [[r["radius"], r["far"], r["every"], r["interface"], r["rms"], r["peak"], 1e3 * r["mean"],
                       1e3 * r["p50"], 1e3 * r["p99"], r["misses"], r["build_s"], 1e3 * r["whole_mean"], r["events"]]
                      for r in fine],
-                    "Refined liver (88 576 tets), attached probe 20 N/m, stable neo-Hookean, 001's chirp for 1 s, "
-                    "condensed regions with a single-precision interface product. The region is built before the "
+                    f"{fine_caption(ctx)}. The region is built before the "
                     "first frame (its build time, the modes' eigensolution included, is not in the frame time). One "
                     "thread on "
                     f"{cpu_description()} while other work ran: times are upper bounds.")
@@ -196,7 +238,8 @@ def fine_lines(fine):
     for r in fine:
         L.append(f"- radius {r['radius']:g} m ({r['interface']} interface nodes), {r['far']}, recovered every "
                  f"{r['every']} frames: {r['rms']:.3g} % RMS; {1e3 * r['mean']:.3g} ms mean per frame (p50 "
-                 f"{1e3 * r['p50']:.3g}, p99 {1e3 * r['p99']:.3g}), {r['misses']} of {r['frames']} frames over 1 ms; "
+                 f"{1e3 * r['p50']:.3g}, p99 {1e3 * r['p99']:.3g}), {r['misses']} of {r['frames']} frames over "
+                 f"{period_words(r)}; "
                  f"whole model {1e3 * r['whole_mean']:.3g} ms.")
     met = [r for r in fine if r["far"] != "Guyan" and r["events"] == 0 and r["rms"] <= TARGET]
     best = min(fine, key=lambda r: r["rms"])
@@ -204,7 +247,7 @@ def fine_lines(fine):
         fast = min(met, key=lambda r: r["mean"])
         L += ["", f"In plain words: on the refined liver the modes take the chirp under the {TARGET:g} % target: "
                   f"{fast['rms']:.3g} % RMS at radius {fast['radius']:g} m, {1e3 * fast['mean']:.3g} ms mean per frame "
-                  f"with {fast['misses']} of {fast['frames']} frames over 1 ms."]
+                  f"with {fast['misses']} of {fast['frames']} frames over {period_words(fast)}."]
     else:
         L += ["", f"In plain words: on the refined liver no setting meets the {TARGET:g} % target on the chirp; the "
                   f"best is {best['rms']:.3g} % RMS ({best['far']}, radius {best['radius']:g} m)."]

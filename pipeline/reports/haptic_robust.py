@@ -5,7 +5,7 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.bench import cpu_description
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 LAW_NAMES = {"neo_hookean_paper": "neo-Hookean (000 eq. 14)", "stable_neo_hookean": "stable neo-Hookean (Smith et al. 2018)"}
 
@@ -20,6 +20,8 @@ def row_of(run):
     hold = magnitude[time > run.config["input"]["ramp_time"]]
     return {
         "model": run.config["model"]["material"]["model"], "depth": run.config["input"]["depth"],
+        "ramp": run.config["input"]["ramp_time"], "hold_s": float(time[-1] - run.config["input"]["ramp_time"]),
+        "probe": (run.config.get("probe") or {}).get("stiffness"),
         "frames": p["frames"], "events": len(events), "first_event": events[0] if events else None,
         "answered": int(np.isfinite(force).all(axis=1).sum()), "peak": float(magnitude.max()),
         "final": float(magnitude[-1]), "zero_frames": int((magnitude == 0).sum()),
@@ -41,8 +43,14 @@ def plot_forces(rows, path):
     ax.set_xlabel("time (s)")
     ax.set_ylabel("|force on tool| (N)")
     ax.legend(fontsize=7, loc="upper left")
-    fig.suptitle(f"liver, tip pressed {100 * rows[0]['depth']:g} cm over 1 s and held", fontsize=9)
+    fig.suptitle(f"liver, tip pressed {_either(rows, 'depth', 100, 'cm')} over {_either(rows, 'ramp', 1, 's')} "
+                 "and held", fontsize=9)
     plots.save(fig, path)
+
+
+def _either(rows, key, scale, unit) -> str:
+    """The rows' values of `key` in words ("3 cm", or "2 or 3 cm" where they differ)."""
+    return either([round(r[key] * scale, 9) for r in rows if r[key] is not None], unit=unit)
 
 
 def report(ctx):
@@ -56,11 +64,12 @@ def report(ctx):
                   r["answered"], r["events"], r["first_event"]["frame"] if r["first_event"] else "–",
                   r["zero_frames"], r["peak"], r["hold_mean"], r["hold_std"], r["jump"], 1e3 * r["p50"],
                   1e3 * r["p99"], 1e3 * r["max"], r["misses"]] for r in rows],
-                f"The liver of haptic_whole, tip pressed straight down through a 100 N/m spring, whole model, one "
+                f"The liver of haptic_whole, tip pressed straight down through a {_either(rows, 'probe', 1, 'N/m')} "
+                f"spring, whole model, one "
                 f"thread, each run alone on {cpu_description()}. An event is a numerical failure the scene "
                 "recovered from (model back to rest, zero force for that frame). Frame times include the "
-                "recoveries and every interruption by other processes on the machine. The hold is the second after "
-                "the ramp (tip at full depth).")
+                "recoveries and every interruption by other processes on the machine. The hold is the "
+                f"{_either(rows, 'hold_s', 1, 's')} after the ramp (tip at full depth).")
     by_model = {r["model"]: r for r in rows}
     nh, sn = by_model.get("neo_hookean_paper"), by_model.get("stable_neo_hookean")
     text = ["## A live scene never stops: the deep press", "",
@@ -75,8 +84,7 @@ def report(ctx):
                     f"p99 {1e3 * r['p99']:.3f} ms.")
     if nh and sn and nh["first_event"]:
         before = max(nh["first_event"]["frame"] - 1, 1)
-        text += ["", f"In plain words: pressed {100 * nh['depth']:g} cm into the liver, three times the 1 cm at "
-                 "which haptic_whole's press already inverts a neo-Hookean TLED element, the neo-Hookean model "
+        text += ["", f"In plain words: pressed {100 * nh['depth']:g} cm into the liver, the neo-Hookean model "
                  f"fails {nh['events']} times from frame {nh['first_event']['frame']} on. Each time the guard "
                  "reports it, returns the model to rest and answers the device with zero force, and the spring, "
                  "its tip still deep in the organ, drags the model straight back into the same failure: over the "

@@ -5,7 +5,7 @@ import numpy as np
 
 from pipeline import plots
 from pipeline.bench import cpu_description
-from pipeline.tables import write_table
+from pipeline.tables import either, write_table
 
 SCENES = (("cube_run", "cuboid", "forces_cube.png"), ("liver_run", "liver", "forces_liver.png"))
 
@@ -21,7 +21,12 @@ def row_of(scene, run):
         "p50": t["frame_seconds_p50"], "p99": t["frame_seconds_p99"], "max": t["frame_seconds_max"],
         "misses": t["deadline_misses"], "events": len(p["events"]), "frame_step": p["frame_step"],
         "first_event": p["events"][0] if p["events"] else None,
+        "probe": (run.config.get("probe") or {}).get("stiffness"),
     }
+
+
+def period_words(rows) -> str:
+    return either([r["frame_step"] for r in rows], lambda v: f"{1e3 * v:g} ms")
 
 
 def plot_forces(runs, title, path):
@@ -43,12 +48,13 @@ def plot_forces(runs, title, path):
 
 def plain_median(rows):
     """Whether the median frame fits the frame period, in every run or not in some."""
-    period = rows[0]["frame_step"]
-    over = [r for r in rows if r["p50"] > period]
+    over = [r for r in rows if r["p50"] > r["frame_step"]]
     if not over:
-        return "In plain words: on meshes of this size the whole model's median frame fits the 1 ms haptic period on one core"
+        return (f"In plain words: on meshes of this size the whole model's median frame fits the {period_words(rows)} "
+                "haptic period on one core")
     names = ", ".join(f"{r['scene']} {r['input']}" for r in over)
-    return (f"In plain words: the whole model's median frame fits the 1 ms haptic period on one core except in {names} "
+    return (f"In plain words: the whole model's median frame fits the {period_words(rows)} haptic period on one core "
+            f"except in {names} "
             "(where the median also carries the recoveries from the events above, or other work on the machine)")
 
 
@@ -57,7 +63,8 @@ def report(ctx):
     for stage, scene, png in SCENES:
         runs = ctx.runs(stage)
         rows += [row_of(scene, r) for r in runs]
-        plot_forces(runs, f"{scene}: force on the tool, whole model at 1 kHz", ctx.out(png))
+        rate = either([1.0 / r.payload["frame_step"] for r in runs], lambda v: f"{v / 1000:g} kHz")
+        plot_forces(runs, f"{scene}: force on the tool, whole model at {rate}", ctx.out(png))
     write_table(ctx, "whole", ["scene", "input", "nodes", "tets", "substeps / frame", "Δt (s)", "frames",
                                "peak |F| (N)", "frame p50 (ms)", "frame p99 (ms)", "frame max (ms)",
                                "deadline misses", "events"],
@@ -66,15 +73,15 @@ def report(ctx):
                 f"Whole model, one thread, offline runs of the generated inputs (haptic_sim run), each run alone in the "
                 f"pipeline on "
                 f"{cpu_description()}. A deadline miss is a frame whose computation took longer than the "
-                f"{1e3 * rows[0]['frame_step']:g} ms frame period.")
+                f"{period_words(rows)} frame period.")
     worst = max(rows, key=lambda r: r["p99"])
     misses = sum(r["misses"] for r in rows)
     frames = sum(r["frames"] for r in rows)
     events = sum(r["events"] for r in rows)
     text = [
         "## The 3-D haptic scene (whole model)", "",
-        "A tool tip pulls the organ's surface through a 100 N/m spring once per 1 ms frame; the spring's force is "
-        "the model's input and the force on the device (001 §3, here on tetrahedral TLED models of 000). "
+        f"A tool tip pulls the organ's surface through a {either([r['probe'] for r in rows], lambda v: f'{v:g} N/m')} "
+        f"spring once per {period_words(rows)} frame; the spring's force is the model's input and the force on the device (001 §3, here on tetrahedral TLED models of 000). "
         "[Table](whole.md), [cuboid forces](forces_cube.png), [liver forces](forces_liver.png).", "",
         f"- Every frame of every input was answered: {frames} frames, {events} numerical events.",
         *[f"- **{r['scene']}, {r['input']}: {r['events']} events** (the model recovered to rest and the frames went "
@@ -84,7 +91,8 @@ def report(ctx):
           for r in rows if r["events"]],
         f"- Frame time, whole model on one core ({cpu_description()}): the slowest scene's p99 is "
         f"{1e3 * worst['p99']:.3f} ms ({worst['scene']}, {worst['input']}, {worst['tets']} tets, "
-        f"{worst['substeps']} substeps per frame); {misses} of {frames} frames missed the 1 ms deadline.",
+        f"{worst['substeps']} substeps per frame); {misses} of {frames} frames missed their deadline "
+        f"({period_words(rows)}).",
         f"- Median frame time: at most {1e3 * max(r['p50'] for r in rows):.3f} ms over all runs.",
         "", plain_median(rows) + "; its tail does not, on this machine: the p99 and the deadline misses include every "
         "interruption by other processes (the pipeline runs these alone, but nothing else on the machine is "

@@ -17,7 +17,10 @@ Each measurement is one `dhd_sim` process (from the pipeline's bin folder) whose
 "timing" block gives the stepping loop's steps/s (setup and file I/O excluded), the kernel time
 per element of each kind and the node-phase time per node. The artifact ("dhd_timing" v1) keeps
 every sample, the best and the median per partition, the element counts by kind name, the
-engine's element-kind legend (from its artifacts), the binary's sha256 and the CPU.
+engine's element-kind legend (from its artifacts), the binary's sha256 and the CPU, and the
+"machine" block of pipeline.stages.machine_load: the load, CPU steal and calibration kernel around
+the sitting (a disturbed sitting is taken once more, then flagged), with the load average after
+every sample.
 """
 # Executables this stage runs: part of its cache key (pipeline/runner.py).
 TOOLS = ("dhd_sim",)
@@ -34,6 +37,7 @@ from pipeline.artifacts import read_artifact, write_artifact
 from pipeline.hashing import file_hash
 from pipeline.paths import BIN, ROOT
 from pipeline.element_kinds import kind_counts, kind_legend
+from pipeline.stages.machine_load import load_average, measure
 
 TOOL = "pipeline.stages.dhd_timing"
 SCHEMA = "dhd_timing"
@@ -83,12 +87,9 @@ def _check(cfg):
     return parts, threads, repeats
 
 
-def run(ctx):
-    cfg = ctx.config
-    parts, threads, repeats = _check(cfg)
-    binary = BIN / "dhd_sim"
-    if not binary.exists():
-        raise TimingConfigError(f"no executable {binary} (build dhd_sim first)")
+
+def _sitting(cfg, parts, threads, repeats, binary, log):
+    """Every partition `repeats` times, interleaved: (samples, details, legend)."""
     samples = {(th, k): [] for th in threads for k in range(len(parts))}
     details = {}
     legend = None
@@ -109,14 +110,26 @@ def run(ctx):
             timing = payload["timing"]
             samples[(th, k)].append(timing["steps_per_second"])
             record = {"ns_per_element": timing.get("ns_per_element", {}),
-                      "node_phase_ns_per_node": timing.get("node_phase_ns_per_node")}
+                      "node_phase_ns_per_node": timing.get("node_phase_ns_per_node"),
+                      "load": load_average()}
             if not details.get((th, k)):
                 legend = kind_legend(payload)
                 record["counts"] = kind_counts(payload)
                 record["dt"] = payload["solver"]["dt"]
                 record["steps"] = payload["solver"]["steps"]
             details.setdefault((th, k), []).append(record)
-            ctx.log(f"round {rnd} threads {th} partition {k}: {timing['steps_per_second']:.1f} steps/s")
+            log(f"round {rnd} threads {th} partition {k}: {timing['steps_per_second']:.1f} steps/s")
+    return samples, details, legend
+
+
+def run(ctx):
+    cfg = ctx.config
+    parts, threads, repeats = _check(cfg)
+    binary = BIN / "dhd_sim"
+    if not binary.exists():
+        raise TimingConfigError(f"no executable {binary} (build dhd_sim first)")
+    (samples, details, legend), machine = measure(lambda: _sitting(cfg, parts, threads, repeats, binary, ctx.log),
+                                                  ctx.log)
     runs = []
     for th in threads:
         for k, part in enumerate(parts):
@@ -130,13 +143,15 @@ def run(ctx):
             s = samples[(th, k)]
             runs.append({
                 "partition": part, "threads": th, "samples": s,
+                "load_per_sample": [d.get("load") for d in details[(th, k)]],
                 "steps_per_second": max(s), "median": statistics.median(s), "min": min(s), "max": max(s),
                 "counts": first["counts"], "dt": first["dt"], "steps": first["steps"],
                 "ns_per_element": {name: statistics.median(v) for name, v in per_kind.items()},
                 "node_phase_ns_per_node": statistics.median(node_ns) if node_ns else None,
             })
     payload = {"runs": runs, "element_kind_legend": legend, "repeats": repeats, "order": "interleaved round robin",
-               "binary_sha256": file_hash(binary), "cpu": cpu_model(), "cpu_count": os.cpu_count()}
+               "binary_sha256": file_hash(binary), "cpu": cpu_model(), "cpu_count": os.cpu_count(),
+               "machine": machine}
     mesh = Path(ROOT / cfg["sim"]["mesh"])
     inputs = [mesh] + ([Path(ROOT / cfg["engine"])] if "engine" in cfg else [])
     write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=inputs)

@@ -12,8 +12,9 @@ Pipeline stage (mark it "exclusive": true):
 The client presses straight down (-z) from the boundary node nearest to `start` to `depth` over
 `ramp_time`, then holds. It keeps the schedule: frame k is sent at t0 + k / rate, or at once if the
 previous answer came late, so late frames show as such. The artifact ("haptic_realtime" v1) keeps
-every round trip (s), the served payload's timing and regions blocks, the CPU and the binary's
-sha256.
+every round trip (s), the served payload's timing and regions blocks, the CPU, the binary's
+sha256 and the "machine" block of pipeline.stages.machine_load (load, CPU steal and a calibration
+kernel around the run; a disturbed run is served once more, then flagged).
 """
 TOOLS = ("haptic_sim",)
 
@@ -29,6 +30,7 @@ import numpy as np
 from pipeline.artifacts import read_artifact, write_artifact
 from pipeline.bench import cpu_description
 from pipeline.paths import ROOT
+from pipeline.stages.machine_load import measure
 from pipeline.stages.stability_common import read_payload, tool_hashes, tool_path
 
 SCHEMA = "haptic_realtime"
@@ -53,6 +55,17 @@ def run(ctx):
     origin = X[surface[np.argmin(np.linalg.norm(X[surface] - np.array(press["start"]), axis=1))]]
     frames = int(round(seconds * rate))
     scene = dict(cfg["scene"], realtime={"source": "stdin", "max_frames": 0, "announce": True})
+    (round_trip, served), machine = measure(lambda: _serve(scene, origin, frames, rate, press), ctx.log)
+    payload = {"frames": frames, "rate": rate, "seconds": seconds, "round_trip_seconds": round_trip.tolist(),
+               "timing": served["timing"], "regions": served["regions"], "solver": served["solver"],
+               "model": served["model"], "substeps": served["substeps"], "events": len(served["events"]),
+               "peak_force": float(np.linalg.norm(np.array(served["force"]), axis=1).max()),
+               "cpu": cpu_description(), "tools": tool_hashes(TOOLS), "machine": machine}
+    write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["scene"]["model"]["mesh"]])
+
+
+def _serve(scene, origin, frames, rate, press):
+    """One served run: (round trip per frame in s, the served artifact's payload)."""
     round_trip = np.zeros(frames)
     with tempfile.TemporaryDirectory(prefix="haptic_realtime_") as tmp:
         cfg_path, out_path = Path(tmp) / "scene.json", Path(tmp) / "served.json"
@@ -92,9 +105,4 @@ def run(ctx):
             lines = [l for l in err.splitlines() if l.strip()]
             raise RuntimeError(f"haptic_sim serve failed (exit {code}): {lines[-1] if lines else 'no message'}")
         served = read_artifact(out_path)["payload"]
-    payload = {"frames": frames, "rate": rate, "seconds": seconds, "round_trip_seconds": round_trip.tolist(),
-               "timing": served["timing"], "regions": served["regions"], "solver": served["solver"],
-               "model": served["model"], "substeps": served["substeps"], "events": len(served["events"]),
-               "peak_force": float(np.linalg.norm(np.array(served["force"]), axis=1).max()),
-               "cpu": cpu_description(), "tools": tool_hashes(TOOLS)}
-    write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["scene"]["model"]["mesh"]])
+    return round_trip, served
