@@ -95,7 +95,7 @@ test-sanitize: setup
 # Every input parser under libFuzzer (clang, with ASan/UBSan) for FUZZ_SECONDS each, seeded
 # from tests/fuzz_corpus/; run_app is the executables' entry point, config file to artifact.
 FUZZ_SECONDS ?= 60
-FUZZERS = gmsh_reader:gmsh vtk_reader:vtk vtu_reader:vtu mesh_artifact:mesh_artifact dhd_config:dhd_config rpim_config:rpim_config fit_inputs:fit_inputs async_config:async_config run_app:run_app
+FUZZERS = gmsh_reader:gmsh vtk_reader:vtk vtu_reader:vtu mesh_artifact:mesh_artifact dhd_config:dhd_config rpim_config:rpim_config fit_inputs:fit_inputs async_config:async_config run_app:run_app wire_protocol:wire_protocol
 fuzz: setup
 	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DSOFTSIM_FUZZ=ON -DSOFTSIM_SANITIZE=ON -DSOFTSIM_TESTS=OFF -DSOFTSIM_BENCHMARKS=OFF > /dev/null

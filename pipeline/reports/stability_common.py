@@ -3,7 +3,8 @@ part per experiment (summary_<part>.md), in a fixed reading order, whichever ran
 from pipeline.report_md import gather_parts
 
 PARTS = ["summary_overview.md", "summary_timestep.md", "summary_incompressible.md", "summary_inversion.md",
-         "summary_quality.md", "summary_longrun.md", "summary_rpim.md", "summary_fit.md", "summary_bad_input.md"]
+         "summary_quality.md", "summary_longrun.md", "summary_rpim.md", "summary_fit.md", "summary_bad_input.md",
+         "summary_haptic_serve.md"]
 
 OVERVIEW = """# Stability: where each method is safe, where it breaks, what the software does then
 

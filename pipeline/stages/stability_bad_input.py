@@ -7,7 +7,7 @@ results/stability/ so the summary can say what each executable does with bad inp
 Config: {"inputs": {"@MESH@": artifact, "@DATASET_X@": ..., "@FIT@": ...}}
 """
 # Executables this stage runs: part of its cache key (pipeline/runner.py).
-TOOLS = ("mesher", "dhd_sim", "rpim_precompute", "marquardt_fit", "async_sim")
+TOOLS = ("mesher", "dhd_sim", "rpim_precompute", "marquardt_fit", "async_sim", "haptic_sim")
 # Repository folders this stage reads: part of its cache key too.
 DATA = ("tests/bad_input",)
 

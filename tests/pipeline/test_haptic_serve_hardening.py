@@ -183,7 +183,7 @@ def test_udp_session_belongs_to_its_first_peer(scene):
 
 def test_udp_client_silent_past_the_idle_timeout_ends_with_its_record(scene):
     tmp, config = scene
-    server, address = udp_server(tmp, config, idle_timeout=0.3)
+    server, address = udp_server(tmp, config, idle_timeout=1.0)
     bridge = client()
     for k in range(1, 6):
         bridge.sendto(line(k).encode(), address)

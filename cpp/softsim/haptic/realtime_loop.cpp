@@ -71,6 +71,7 @@ const char* signal_name(int sig) { return sig == SIGTERM ? "SIGTERM" : sig == SI
 struct SessionLog {
   std::string transport, ended_by = "input_closed", peer;
   long messages = 0, comments = 0, errors = 0, oversized = 0, late_times = 0, other_peer_datagrams = 0;
+  long undelivered = 0;  // frames computed whose answer could not be written (the reader left)
   long long kernel_dropped = 0;
   std::vector<std::string> error_messages, other_peers;
   int exit_code = 0;
@@ -94,6 +95,7 @@ struct SessionLog {
             {"error_messages", error_messages},
             {"oversized", oversized},
             {"time_gaps", late_times},
+            {"undelivered_frames", undelivered},
             {"other_peer_datagrams", other_peer_datagrams},
             {"other_peers", other_peers},
             {"kernel_dropped", kernel_dropped},
@@ -320,6 +322,7 @@ ServedSession serve_lines(HapticScene& scene, int in_fd, int out_fd, const Serve
       break;
     }
     if (!write_all(out_fd, server.answer(), server.length())) {
+      if (server.take_frame()) ++log.undelivered;  // recorded, never felt
       if (!StopSignals::caught()) log.end("client_left", kExitClientLeft);
       break;
     }
