@@ -471,6 +471,13 @@ void RegionTracker::frame(const std::vector<dynamics::AppliedForce>& forces) {
   ++level_frames_[std::max(active_level_, 0)];
 }
 
+void RegionTracker::frame_with_spring(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights,
+                                      const Eigen::Vector3d& anchor, double k) {
+  if (!active_) return;
+  active_->frame_with_spring(nodes, weights, anchor, k);
+  ++level_frames_[std::max(active_level_, 0)];
+}
+
 void RegionTracker::frame_with_tool(int k, const Eigen::Vector3d& centre) {
   if (!active_) return;
   active_->set_tool_position(k, centre);

@@ -74,6 +74,9 @@ class RegionTracker {
   int count_late_contacts(const std::vector<int>& touched);
   // One frame of the active region (none yet: nothing moves).
   void frame(const std::vector<dynamics::AppliedForce>& forces);
+  // One frame with the probe's spring integrated at every substep (RegionSolver::frame_with_spring).
+  void frame_with_spring(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights, const Eigen::Vector3d& anchor,
+                         double k);
   // One frame with rigid tool k at `centre` (none active yet: nothing moves, no force).
   void frame_with_tool(int k, const Eigen::Vector3d& centre);
   Eigen::Vector3d tool_force(int k) const { return active_ ? active_->tool_force(k) : Eigen::Vector3d::Zero(); }
