@@ -260,3 +260,28 @@ TEST(LiveRegions, ACutReachingTheFarFieldIsRebuiltBesideTheFrames) {
   EXPECT_LT(std::sqrt(sum / fi.size()) / peak(fi), 0.05);
   EXPECT_GT(std::sqrt(sum / fi.size()), 0.0);  // the far field lagged the cut by three frames
 }
+
+// A modal far field recovered rarely (secondary_every 100000, nobody reading pictures) and one
+// recovered every 10 frames answer the same forces, bit for bit, through a cut that reaches the
+// far field: the region rebuilt on the cut mesh starts from the far field brought up to date at
+// the cut (its displacement and, one step earlier, its motion), not from the last picture's.
+TEST(LiveRegions, ARarelyRecoveredModalFarFieldHasNoTransientAfterACut) {
+  Block b;
+  hybrid::DhdConfig config = b.config(40);
+  hybrid::CutSpec far_cut;
+  far_cut.time = 0.063;
+  far_cut.sweep = test_scenes::sweep_along_x(0.0, 0.1, 0.085, 0.01, 0.06);
+  config.cuts.push_back(far_cut);
+  haptic::HapticOptions often = modal_regions();
+  haptic::HapticOptions rarely = often;
+  rarely.regions.secondary_every = 100000;
+  haptic::HapticScene a(b.mesh, config, often);
+  haptic::HapticScene c(b.mesh, config, rarely);
+  const haptic::ProbePath path = test_scenes::press_down(kTop, 0.004, 0.05);
+  const haptic::HapticRecord ra = haptic::run_haptic(a, path, 150);
+  const haptic::HapticRecord rc = haptic::run_haptic(c, path, 150);
+  ASSERT_EQ(a.regions()->topology_stats().rebuilds, 1);
+  ASSERT_EQ(c.regions()->topology_stats().rebuilds, 1);
+  EXPECT_EQ(c.regions()->totals().secondary_updates, 1);  // the one the cut asked for
+  for (std::size_t k = 0; k < ra.force.size(); ++k) ASSERT_EQ(ra.force[k], rc.force[k]) << "frame " << k;
+}

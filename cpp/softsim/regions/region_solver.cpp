@@ -150,7 +150,7 @@ void RegionSolver::start_from(const std::vector<double>& u, const std::vector<do
   }
   if (condensed_) {
     condensed_->drop_kept();  // a recovery kept for the state left behind
-    condensed_->start_modes(u_.data());
+    condensed_->start_modes(u_.data(), u.empty() || u_before.empty() ? nullptr : u_before.data());
   }
   last_update_ = stats_.frames;
   input_at_update_.assign(u_.begin(), u_.end());
@@ -290,6 +290,11 @@ void RegionSolver::primary_previous(double* u) const {
   const double* now = solver_->displacement();
   const double dt = solver_->dt();
   for (std::size_t k = 0; k < v.size(); ++k) u[3 * region_.nodes[k / 3] + k % 3] = now[k] - dt * v[k];
+}
+
+void RegionSolver::previous_state(double* u) {
+  primary_previous(u);
+  if (condensed_) condensed_->recover_previous(u, gravity_factor());
 }
 
 void RegionSolver::refresh_secondary() {

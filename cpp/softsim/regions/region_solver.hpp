@@ -141,6 +141,11 @@ class RegionSolver {
   // The primary region's displacement one step ago into `u` (global layout; other nodes
   // untouched).
   void primary_previous(double* u) const;
+  // The whole published state one step ago into `u` (after refresh_secondary): the primary
+  // region's previous step, and (condensed) the far field recovered at that step from the
+  // interface's previous displacement and the modes' previous state, so a successor resumes the
+  // far field's motion too.
+  void previous_state(double* u);
   const PrimaryRegion& region() const { return region_; }
 
   // ---- rigid tools (the model's boundary.tools, on the primary interior's nodes) ----

@@ -339,11 +339,12 @@ void RegionTracker::take_finished() {
   swap_in(std::move(done));
 }
 
-void RegionTracker::published_state(std::vector<double>& u, std::vector<double>& u_before) {
+void RegionTracker::published_state(std::vector<double>& u, std::vector<double>& u_before, std::size_t n3) {
+  if (n3 == 0) n3 = rest_.size();
   active_->refresh_secondary();
-  u.assign(active_->displacement(), active_->displacement() + rest_.size());
+  u.assign(active_->displacement(), active_->displacement() + n3);
   u_before = u;
-  active_->primary_previous(u_before.data());
+  active_->previous_state(u_before.data());
 }
 
 void RegionTracker::swap_in(Finished&& done) {
@@ -431,9 +432,10 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     }
     // The active region's secondary factorisation (and condensed interface) no longer holds:
     // the region is built anew on the cut mesh and resumes from the state it published.
-    std::vector<double> u(active_->displacement(), active_->displacement() + n3_before);
-    std::vector<double> u_before = u;
-    active_->primary_previous(u_before.data());
+    // Brought up to date first: a far field recovered rarely (a large secondary_every) would
+    // otherwise hand its successor a stale far field and modes (a transient after the cut).
+    std::vector<double> u, u_before;
+    published_state(u, u_before, n3_before);
     // Each node copy starts from its node's state (a separation keeps every velocity).
     u.resize(rest_.size(), 0.0);
     u_before.resize(rest_.size(), 0.0);

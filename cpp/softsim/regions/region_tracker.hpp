@@ -137,7 +137,8 @@ class RegionTracker {
   // The worker's region made active, starting from the state the active one publishes.
   void swap_in(Finished&& done);
   // The state the active region publishes, brought up to date (what a successor starts from).
-  void published_state(std::vector<double>& u, std::vector<double>& u_before);
+  // `n3`: its length (0: the current mesh's 3 × nodes; before a separation's copies, the old).
+  void published_state(std::vector<double>& u, std::vector<double>& u_before, std::size_t n3 = 0);
 
   const mesh::TetMesh* mesh_;
   hybrid::DhdConfig model_;
