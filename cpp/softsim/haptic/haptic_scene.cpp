@@ -129,6 +129,7 @@ void HapticScene::back_to_rest() {
   in_contact_ = false;
   tool_touching_ = false;
   contact_ = SurfacePoint();
+  contact_held_ = false;
   has_previous_tip_ = false;
 }
 
@@ -308,26 +309,32 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       }
     }
     bool apply = in_contact_;
+    const SurfacePoint* acted_on = &contact_;  // where the spring's force acts on the tissue
     if (options_.use_regions && in_contact_) {
       // The primary region follows the contact (built, moved or resized).
       regions_->follow(contact_.nodes, contact_.weights, frames_);
       const regions::RegionSolver* r = regions_->active();
       if (r && !(r->interior(contact_.nodes[0]) && r->interior(contact_.nodes[1]) && r->interior(contact_.nodes[2]))) {
-        // Its region is being built beside the frames: the contact stays on the material point
-        // the current region holds (the spring stretches meanwhile), or, for a new contact
-        // outside it, the tissue does not move under it until its region arrives.
-        ++live_stats_.frames_held;
-        if (was_in_contact && r->interior(held.nodes[0]) && r->interior(held.nodes[1]) && r->interior(held.nodes[2])) {
-          contact_ = surface_->at(held.triangle, held.weights, regions_->published());
-          f = k * (probe - contact_.position);
+        // Its region is being built beside the frames. The contact slides on as always (the
+        // device feels the spring to it, on the published surface), and the tissue receives
+        // the spring's force at the last contact point inside the current region; a new
+        // contact outside it moves no tissue until its region arrives.
+        if (was_in_contact && !contact_held_) held_point_ = held;
+        if ((was_in_contact || contact_held_) && r->interior(held_point_.nodes[0]) &&
+            r->interior(held_point_.nodes[1]) && r->interior(held_point_.nodes[2])) {
+          acted_on = &held_point_;
+          contact_held_ = true;
+          ++live_stats_.frames_held;
         } else {
           apply = false;
           ++live_stats_.frames_unapplied;
         }
+      } else {
+        contact_held_ = false;
       }
     }
     if (apply)
-      for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
+      for (int a = 0; a < 3; ++a) applied_[a] = {acted_on->nodes[a], acted_on->weights[a] * f};
     const bool substep_spring = options_.spring_coupling == SpringCoupling::substep && apply;
     if (options_.use_regions) {
       if (substep_spring)

@@ -124,8 +124,8 @@ class HapticScene {
   const BladeStats& blade_stats() const { return blade_stats_; }
   // Regions built beside the frames (RegionOptions::build_in_background): the frames whose
   // contact lay outside the current region's interior while its region was being built, the
-  // contact then held on the material point the current region holds, or (a new contact there)
-  // the tissue left unmoved under the spring.
+  // spring's force then acting at the last contact point inside it, or (a new contact there)
+  // on no tissue.
   struct LiveStats {
     long frames_held = 0;
     long frames_unapplied = 0;
@@ -169,6 +169,10 @@ class HapticScene {
   double model_time_ = 0;          // the regions' state time: a frame's start during it
   BladeStats blade_stats_;  // the model's cut events the surface has followed
   LiveStats live_stats_;
+  // Background builds: the last contact point inside the current region, where the spring acts
+  // while the contact is outside it (contact_held_).
+  SurfacePoint held_point_;
+  bool contact_held_ = false;
   double runaway_distance_ = 0;  // m: the mesh's bounding-box diagonal (divergence beyond it)
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
   std::unique_ptr<regions::RegionTracker> regions_;  // the linked regions, or null
