@@ -165,6 +165,7 @@ void RegionTracker::set_centre(int centre) {
 void RegionTracker::follow(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights, long frame) {
   int a = 0;
   weights.maxCoeff(&a);
+  contact_node_ = nodes[a];
   const bool inside = active_ && active_->interior(nodes[0]) && active_->interior(nodes[1]) && active_->interior(nodes[2]);
   const int centre = inside ? centre_ : nodes[a];
   set_centre(centre);
@@ -321,8 +322,15 @@ void RegionTracker::between_frames(long frame) {
     else
       ++builds_.frames_while_building;
   }
-  // A cut reached the active region's far field and nothing is on its way for it: ask now.
-  if (active_stale_ && !pending_.valid() && active_) request(centre_, active_level_, frame, true);
+  // A cut reached the active region's far field and nothing is on its way for it: ask now, around
+  // the contact's node if it has moved on far enough to want a region of its own (one build
+  // serves both), else where the region is.
+  if (active_stale_ && !pending_.valid() && active_) {
+    const bool moved = options_.build_in_background && contact_node_ >= 0 &&
+                       (mesh_->nodes[contact_node_] - mesh_->nodes[centre_]).norm() >
+                           options_.prefetch_fraction * active_->region().radius;
+    request(moved ? contact_node_ : centre_, active_level_, frame, true);
+  }
 }
 
 void RegionTracker::take_finished() {

@@ -164,6 +164,7 @@ class RegionTracker {
   long pending_frame_ = 0;
   long generation_ = 0;
   bool active_stale_ = false;
+  int contact_node_ = -1;  // the contact's node of largest weight at the last follow()
   RegionSolver* active_ = nullptr;
   int active_level_ = -1;
   RegionStats active_from_;  // the active region's statistics when it became active
