@@ -285,3 +285,29 @@ TEST(LiveRegions, ARarelyRecoveredModalFarFieldHasNoTransientAfterACut) {
   EXPECT_EQ(c.regions()->totals().secondary_updates, 1);  // the one the cut asked for
   for (std::size_t k = 0; k < ra.force.size(); ++k) ASSERT_EQ(ra.force[k], rc.force[k]) << "frame " << k;
 }
+
+// With swaps at a fixed frame after the request, the served loop (lines in, answers out) answers
+// a scripted slide that changes regions with the offline run's forces for the same positions, bit
+// for bit, whatever the worker's timing in either (the mode that guarantees served = offline
+// while regions change; the default -1 swaps when the worker is done and does not).
+TEST(LiveRegions, ServedWithFixedSwapFramesEqualsTheOfflineRunAcrossRegionChanges) {
+  Block b;
+  const haptic::HapticOptions opt = background(3, 0.3);
+  haptic::HapticScene served(b.mesh, b.config(40), opt);
+  const long frames = 200;
+  std::ostringstream lines;
+  lines.precision(17);
+  for (long k = 0; k < frames; ++k) {
+    const Eigen::Vector3d p = press_and_slide(k);
+    lines << (k + 1) * 1e-3 << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  }
+  served.prepare(press_and_slide(0));
+  std::istringstream in(lines.str());
+  std::ostringstream out;
+  const haptic::HapticRecord record = haptic::serve_lines(served, in, out, 0);
+  ASSERT_EQ(record.frames, frames);
+  EXPECT_GT(served.regions()->builds().swaps, 2);
+  haptic::HapticScene offline(b.mesh, b.config(40), opt);
+  offline.prepare(press_and_slide(0));
+  for (long k = 0; k < frames; ++k) ASSERT_EQ(offline.frame(press_and_slide(k)), record.force[k]) << "frame " << k;
+}
