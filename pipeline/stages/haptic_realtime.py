@@ -19,19 +19,17 @@ kernel around the run; a disturbed run is served once more, then flagged).
 TOOLS = ("haptic_sim",)
 
 import json
-import os
-import subprocess
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-from pipeline.artifacts import read_artifact, write_artifact
+from pipeline.artifacts import write_artifact
 from pipeline.bench import cpu_description
-from pipeline.paths import ROOT
 from pipeline.stages.machine_load import measure
-from pipeline.stages.stability_common import read_payload, tool_hashes, tool_path
+from pipeline.stages.paced_client import finish_serve, start_serve, wait_until
+from pipeline.stages.stability_common import read_payload, tool_hashes
 
 SCHEMA = "haptic_realtime"
 TOOL = "pipeline.stages.haptic_realtime"
@@ -70,25 +68,13 @@ def _serve(scene, origin, frames, rate, press):
     with tempfile.TemporaryDirectory(prefix="haptic_realtime_") as tmp:
         cfg_path, out_path = Path(tmp) / "scene.json", Path(tmp) / "served.json"
         cfg_path.write_text(json.dumps(scene))
-        proc = subprocess.Popen([str(tool_path("haptic_sim")), "serve", "--config", str(cfg_path), "--out", str(out_path)],
-                                cwd=ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                text=True, bufsize=1, env=dict(os.environ, OMP_NUM_THREADS="1"))
         # The device's clock starts once the scene says it is set up (model, and the region at
         # the press's start), as a bridge would wait for it.
-        ready = proc.stderr.readline()
-        if "haptic_sim: ready" not in ready:
-            proc.kill()
-            raise RuntimeError(f"haptic_sim serve did not get ready: {ready.strip() or proc.stderr.read().strip()}")
+        proc = start_serve(cfg_path, out_path)
         period = 1.0 / rate
         start = time.perf_counter()
         for k in range(frames):
-            due = start + k * period
-            while True:  # sleep most of the wait, spin the last 0.2 ms
-                ahead = due - time.perf_counter()
-                if ahead <= 0:
-                    break
-                if ahead > 2e-4:
-                    time.sleep(ahead - 2e-4)
+            wait_until(start + k * period)
             t = (k + 1) * period
             depth = press["depth"] * min(t / press["ramp_time"], 1.0)
             sent = time.perf_counter()
@@ -98,11 +84,5 @@ def _serve(scene, origin, frames, rate, press):
             round_trip[k] = time.perf_counter() - sent
             if not answer:
                 break
-        proc.stdin.close()
-        err = proc.stderr.read()
-        code = proc.wait()
-        if code != 0:
-            lines = [l for l in err.splitlines() if l.strip()]
-            raise RuntimeError(f"haptic_sim serve failed (exit {code}): {lines[-1] if lines else 'no message'}")
-        served = read_artifact(out_path)["payload"]
+        served = finish_serve(proc, out_path)
     return round_trip, served

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "softsim/haptic/haptic_run.hpp"
 #include "softsim/haptic/haptic_scene.hpp"
@@ -18,6 +20,21 @@
 using namespace softsim;
 
 namespace {
+
+// The lines served through real pipes, as a bridge's would be: written whole, then the input
+// closed (the lines and the answers both fit a pipe's buffer); the served record.
+haptic::HapticRecord serve_through_pipes(haptic::HapticScene& scene, const std::string& text) {
+  int in_pipe[2], out_pipe[2];
+  if (::pipe(in_pipe) != 0 || ::pipe(out_pipe) != 0) throw std::runtime_error("pipe");
+  if (::write(in_pipe[1], text.data(), text.size()) != static_cast<ssize_t>(text.size()))
+    throw std::runtime_error("the lines did not fit the pipe");
+  ::close(in_pipe[1]);
+  haptic::ServedSession session = haptic::serve_lines(scene, in_pipe[0], out_pipe[1], haptic::ServeOptions{});
+  ::close(in_pipe[0]);
+  ::close(out_pipe[0]);
+  ::close(out_pipe[1]);
+  return std::move(session.record);
+}
 
 using Block = test_scenes::HapticBlock;
 
@@ -108,18 +125,7 @@ TEST(LiveRegions, ServedWithoutPicturesNoFarFieldRecoveryRunsAndTheAnswersAreThe
     lines << (k + 1) * 1e-3 << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
   }
   served.prepare(press(0));
-  // The lines through a real pipe, the answers into another (both fit a pipe's buffer).
-  int in_pipe[2], out_pipe[2];
-  ASSERT_EQ(::pipe(in_pipe), 0);
-  ASSERT_EQ(::pipe(out_pipe), 0);
-  const std::string text = lines.str();
-  ASSERT_EQ(::write(in_pipe[1], text.data(), text.size()), static_cast<ssize_t>(text.size()));
-  ::close(in_pipe[1]);
-  const haptic::ServedSession session = haptic::serve_lines(served, in_pipe[0], out_pipe[1], haptic::ServeOptions{});
-  ::close(in_pipe[0]);
-  ::close(out_pipe[0]);
-  ::close(out_pipe[1]);
-  const haptic::HapticRecord& record = session.record;
+  const haptic::HapticRecord record = serve_through_pipes(served, lines.str());
   ASSERT_EQ(record.frames, frames);
   EXPECT_GE(served.regions()->totals().secondary_updates, frames / 10 - 1);
   EXPECT_EQ(served.regions()->totals().far_field_recoveries, 0);
@@ -270,4 +276,53 @@ TEST(LiveRegions, ACutReachingTheFarFieldIsRebuiltBesideTheFrames) {
   for (std::size_t k = 0; k < fi.size(); ++k) sum += (fw[k] - fi[k]).squaredNorm();
   EXPECT_LT(std::sqrt(sum / fi.size()) / peak(fi), 0.05);
   EXPECT_GT(std::sqrt(sum / fi.size()), 0.0);  // the far field lagged the cut by three frames
+}
+
+// A modal far field recovered rarely (secondary_every 100000, nobody reading pictures) and one
+// recovered every 10 frames answer the same forces, bit for bit, through a cut that reaches the
+// far field: the region rebuilt on the cut mesh starts from the far field brought up to date at
+// the cut (its displacement and, one step earlier, its motion), not from the last picture's.
+TEST(LiveRegions, ARarelyRecoveredModalFarFieldHasNoTransientAfterACut) {
+  Block b;
+  hybrid::DhdConfig config = b.config(40);
+  hybrid::CutSpec far_cut;
+  far_cut.time = 0.063;
+  far_cut.sweep = test_scenes::sweep_along_x(0.0, 0.1, 0.085, 0.01, 0.06);
+  config.cuts.push_back(far_cut);
+  haptic::HapticOptions often = modal_regions();
+  haptic::HapticOptions rarely = often;
+  rarely.regions.secondary_every = 100000;
+  haptic::HapticScene a(b.mesh, config, often);
+  haptic::HapticScene c(b.mesh, config, rarely);
+  const haptic::ProbePath path = test_scenes::press_down(kTop, 0.004, 0.05);
+  const haptic::HapticRecord ra = haptic::run_haptic(a, path, 150);
+  const haptic::HapticRecord rc = haptic::run_haptic(c, path, 150);
+  ASSERT_EQ(a.regions()->topology_stats().rebuilds, 1);
+  ASSERT_EQ(c.regions()->topology_stats().rebuilds, 1);
+  EXPECT_EQ(c.regions()->totals().secondary_updates, 1);  // the one the cut asked for
+  for (std::size_t k = 0; k < ra.force.size(); ++k) ASSERT_EQ(ra.force[k], rc.force[k]) << "frame " << k;
+}
+
+// With swaps at a fixed frame after the request, the served loop (lines in, answers out) answers
+// a scripted slide that changes regions with the offline run's forces for the same positions, bit
+// for bit, whatever the worker's timing in either (the mode that guarantees served = offline
+// while regions change; the default -1 swaps when the worker is done and does not).
+TEST(LiveRegions, ServedWithFixedSwapFramesEqualsTheOfflineRunAcrossRegionChanges) {
+  Block b;
+  const haptic::HapticOptions opt = background(3, 0.3);
+  haptic::HapticScene served(b.mesh, b.config(40), opt);
+  const long frames = 200;
+  std::ostringstream lines;
+  lines.precision(17);
+  for (long k = 0; k < frames; ++k) {
+    const Eigen::Vector3d p = press_and_slide(k);
+    lines << (k + 1) * 1e-3 << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  }
+  served.prepare(press_and_slide(0));
+  const haptic::HapticRecord record = serve_through_pipes(served, lines.str());
+  ASSERT_EQ(record.frames, frames);
+  EXPECT_GT(served.regions()->builds().swaps, 2);
+  haptic::HapticScene offline(b.mesh, b.config(40), opt);
+  offline.prepare(press_and_slide(0));
+  for (long k = 0; k < frames; ++k) ASSERT_EQ(offline.frame(press_and_slide(k)), record.force[k]) << "frame " << k;
 }

@@ -122,6 +122,8 @@ HapticConfig read_haptic_config(const io::JsonReader& cfg, const mesh::TetMesh& 
       probe.fail_member("contact", "\"grasp\", \"attach\" or \"push\", or a model with a rigid tool (model.boundary.tools) for \"tool\"");
   } else {
     c.options.probe_stiffness = probe.get_positive("stiffness");
+    c.options.spring_coupling = probe.get_choice("coupling", {"frame", "substep"}, "frame") == "substep"
+                                    ? SpringCoupling::substep : SpringCoupling::frame;
   }
   read_safety(probe, c.safety);
   probe.reject_unknown();

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/dynamics/spectral_step.hpp"
 #include "softsim/dynamics/stable_step.hpp"
 #include "softsim/hybrid/partition.hpp"
@@ -24,7 +25,20 @@ FrameSubsteps frame_substeps(double frame_step, double dt_limit) {
 
 namespace {
 
-hybrid::DhdConfig with_frame_step(hybrid::DhdConfig c, const mesh::TetMesh& mesh, double frame_step) {
+// SpringCoupling::substep: the spring is part of the explicit step, and adds k/m to the squared
+// frequency of a node of mass m it pulls (w = 1 at worst): the step for ω² + k/m_min is
+// 2/sqrt(ω² + k/m_min), i.e. 1/Δt² = 1/Δt_tissue² + 1/Δt_spring² with Δt_spring = 2 sqrt(m_min/k).
+double with_spring(double tissue_dt, const mesh::TetMesh& mesh, double density, double safety, double k) {
+  double m_min = 0;
+  for (double m : dynamics::lumped_mass(mesh, density))
+    if (m > 0 && (m_min == 0 || m < m_min)) m_min = m;
+  if (!(m_min > 0)) return tissue_dt;
+  const double spring_dt = safety * 2.0 * std::sqrt(m_min / k);
+  return 1.0 / std::sqrt(1.0 / (tissue_dt * tissue_dt) + 1.0 / (spring_dt * spring_dt));
+}
+
+hybrid::DhdConfig with_frame_step(hybrid::DhdConfig c, const mesh::TetMesh& mesh, double frame_step,
+                                  double substep_spring = 0) {
   if (c.static_solver) throw InputError("haptic: the model's solver must be explicit (solver.kind \"explicit\")");
   double limit = 0;
   if (c.explicit_solver.dt) {
@@ -35,6 +49,8 @@ hybrid::DhdConfig with_frame_step(hybrid::DhdConfig c, const mesh::TetMesh& mesh
       critical.dt = dynamics::power_iteration_step(mesh, hybrid::make_partition(mesh, c.partition), c.material, c.scene).dt;
     limit = dynamics::choose_time_step(critical, std::nullopt, c.explicit_solver.safety_factor, false).dt;
   }
+  if (substep_spring > 0)
+    limit = with_spring(limit, mesh, c.material.elastic.density, c.explicit_solver.safety_factor, substep_spring);
   c.explicit_solver.dt = frame_substeps(frame_step, limit).dt;
   return c;
 }
@@ -49,7 +65,9 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
     throw InputError("haptic: probe stiffness must be positive");
   if (options.contact == ContactMode::tool && model.scene.tools.empty())
     throw InputError("haptic: contact \"tool\" needs a rigid tool in the model (boundary.tools)");
-  hybrid::DhdConfig c = with_frame_step(std::move(model), *mesh, options.frame_step);
+  const bool substep_spring = options.spring_coupling == SpringCoupling::substep && options.contact != ContactMode::tool;
+  hybrid::DhdConfig c =
+      with_frame_step(std::move(model), *mesh, options.frame_step, substep_spring ? options.probe_stiffness : 0.0);
   substeps_ = frame_substeps(options.frame_step, *c.explicit_solver.dt).substeps;
   if (options_.blade_mode == hybrid::CutMode::separate && !c.separates)
     throw InputError("haptic: a separating blade needs a model set up for separation (DhdConfig::separates)");
@@ -62,6 +80,14 @@ HapticScene::HapticScene(std::shared_ptr<const mesh::TetMesh> mesh, hybrid::DhdC
   model_ = std::make_unique<hybrid::DhdScene>(mesh, std::move(c));
   surface_.emplace(model_->mesh());
   applied_.resize(3);
+  {
+    Eigen::Vector3d lo = mesh->nodes[0], hi = mesh->nodes[0];
+    for (const auto& x : mesh->nodes) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+    runaway_distance_ = (hi - lo).norm();
+  }
   if (options_.use_regions) {
     // The regions drive one rigid tool, the probe's: another would move on its own ramp in a
     // region placed for the probe.
@@ -103,6 +129,7 @@ void HapticScene::back_to_rest() {
   in_contact_ = false;
   tool_touching_ = false;
   contact_ = SurfacePoint();
+  contact_held_ = false;
   has_previous_tip_ = false;
 }
 
@@ -191,6 +218,26 @@ const double* HapticScene::contact_reading(const std::array<int, 3>& nodes) cons
   return regions_->displacement();
 }
 
+void HapticScene::whole_model_spring_frame(const Eigen::Vector3d& probe) {
+  const double k = options_.probe_stiffness;
+  const auto& X = model_->mesh().nodes;
+  for (int s = 0; s < substeps_; ++s) {
+    // x_c at this substep's displacement: the spring is part of the explicit step (000 eq. 33
+    // evaluates every force at u_n).
+    const double* u = model_->displacement();
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a) {
+      const int i = contact_.nodes[a];
+      x += contact_.weights[a] * (X[i] + Eigen::Vector3d(u + 3 * i));
+    }
+    const Eigen::Vector3d f = k * (probe - x);
+    if (!f.allFinite()) throw NumericalError("haptic: the probe spring's force is not finite");
+    for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
+    model_->solver().set_applied_forces(applied_);
+    model_->step(1);
+  }
+}
+
 void HapticScene::update_contact(const Eigen::Vector3d& probe) {
   if (in_contact_) {
     // Attached: the same material point wherever the tip goes; else the closest point (frictionless).
@@ -262,28 +309,41 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
       }
     }
     bool apply = in_contact_;
+    const SurfacePoint* acted_on = &contact_;  // where the spring's force acts on the tissue
     if (options_.use_regions && in_contact_) {
       // The primary region follows the contact (built, moved or resized).
       regions_->follow(contact_.nodes, contact_.weights, frames_);
       const regions::RegionSolver* r = regions_->active();
       if (r && !(r->interior(contact_.nodes[0]) && r->interior(contact_.nodes[1]) && r->interior(contact_.nodes[2]))) {
-        // Its region is being built beside the frames: the contact stays on the material point
-        // the current region holds (the spring stretches meanwhile), or, for a new contact
-        // outside it, the tissue does not move under it until its region arrives.
-        ++live_stats_.frames_held;
-        if (was_in_contact && r->interior(held.nodes[0]) && r->interior(held.nodes[1]) && r->interior(held.nodes[2])) {
-          contact_ = surface_->at(held.triangle, held.weights, regions_->published());
-          f = k * (probe - contact_.position);
+        // Its region is being built beside the frames. The contact slides on as always (the
+        // device feels the spring to it, on the published surface), and the tissue receives
+        // the spring's force at the last contact point inside the current region; a new
+        // contact outside it moves no tissue until its region arrives.
+        if (was_in_contact && !contact_held_) held_point_ = held;
+        if ((was_in_contact || contact_held_) && r->interior(held_point_.nodes[0]) &&
+            r->interior(held_point_.nodes[1]) && r->interior(held_point_.nodes[2])) {
+          acted_on = &held_point_;
+          contact_held_ = true;
+          ++live_stats_.frames_held;
         } else {
           apply = false;
           ++live_stats_.frames_unapplied;
         }
+      } else {
+        contact_held_ = false;
       }
     }
     if (apply)
-      for (int a = 0; a < 3; ++a) applied_[a] = {contact_.nodes[a], contact_.weights[a] * f};
+      for (int a = 0; a < 3; ++a) applied_[a] = {acted_on->nodes[a], acted_on->weights[a] * f};
+    const bool substep_spring = options_.spring_coupling == SpringCoupling::substep && apply;
     if (options_.use_regions) {
-      regions_->frame(apply ? applied_ : std::vector<dynamics::AppliedForce>());
+      if (substep_spring)
+        regions_->frame_with_spring(contact_.nodes, contact_.weights, probe, k);
+      else
+        regions_->frame(apply ? applied_ : std::vector<dynamics::AppliedForce>());
+    } else if (substep_spring) {
+      whole_model_spring_frame(probe);
+      follow_cuts();
     } else {
       model_->solver().set_applied_forces(in_contact_ ? applied_ : std::vector<dynamics::AppliedForce>());
       model_->step(substeps_);
@@ -291,7 +351,13 @@ Eigen::Vector3d HapticScene::frame(const Eigen::Vector3d& probe) {
     }
     if (!in_contact_) return Eigen::Vector3d::Zero();
     contact_ = surface_->at(contact_.triangle, contact_.weights, contact_reading(contact_.nodes));
-    return -k * (probe - contact_.position);
+    const Eigen::Vector3d stretch = probe - contact_.position;
+    // Divergence, caught in the frame it shows: the contact point has run off farther from the
+    // tip than the organ is large (no tissue stretches that far under a probe), or is not finite.
+    if (!stretch.allFinite() || stretch.norm() > runaway_distance_)
+      throw NumericalError("haptic: the contact point ran away from the tip (" + std::to_string(stretch.norm()) +
+                           " m, more than the organ's size): the coupling diverged");
+    return -k * stretch;
   } catch (const NumericalError& e) {
     // Keep answering the device: report, return the model to rest, and start the contact anew.
     events_.push_back({frames_ - 1, e.what()});

@@ -35,9 +35,20 @@ enum class ContactMode {
           // exerts on it (frictionless contact with its surface nodes) goes to the device
 };
 
+// How the probe's spring is coupled to the model within a frame.
+enum class SpringCoupling {
+  frame,    // f = k (p − x_c) from the frame's start, held over its substeps: an explicit coupling
+            // at the frame step, stable only for a spring soft against the tissue's response
+            // within a frame (it chatters or blows up when stiff)
+  substep,  // the spring is part of the model's explicit step: f = k (p − x_c(u_n)) at every
+            // substep n with the tip p held over the frame (a virtual coupling at the substep
+            // rate), stable for any k up to the explicit step's own limit
+};
+
 struct HapticOptions {
   double frame_step = 1e-3;       // s (1 kHz)
   double probe_stiffness = 100;   // k (N/m); not used by ContactMode::tool
+  SpringCoupling spring_coupling = SpringCoupling::frame;
   // ContactMode::tool: the tool's centre is at tip + tool_offset (e.g. [0, 0, R] puts a sphere's
   // lowest point at a tip pressing down).
   Eigen::Vector3d tool_offset = Eigen::Vector3d::Zero();
@@ -113,8 +124,8 @@ class HapticScene {
   const BladeStats& blade_stats() const { return blade_stats_; }
   // Regions built beside the frames (RegionOptions::build_in_background): the frames whose
   // contact lay outside the current region's interior while its region was being built, the
-  // contact then held on the material point the current region holds, or (a new contact there)
-  // the tissue left unmoved under the spring.
+  // spring's force then acting at the last contact point inside it, or (a new contact there)
+  // on no tissue.
   struct LiveStats {
     long frames_held = 0;
     long frames_unapplied = 0;
@@ -123,6 +134,8 @@ class HapticScene {
 
  private:
   void update_contact(const Eigen::Vector3d& probe);
+  // The whole model's frame with the spring at every substep (SpringCoupling::substep).
+  void whole_model_spring_frame(const Eigen::Vector3d& probe);
   // The displacement to read the contact triangle `nodes` in: the regions' published one when
   // it is current there (primary nodes), else displacement().
   const double* contact_reading(const std::array<int, 3>& nodes) const;
@@ -156,6 +169,11 @@ class HapticScene {
   double model_time_ = 0;          // the regions' state time: a frame's start during it
   BladeStats blade_stats_;  // the model's cut events the surface has followed
   LiveStats live_stats_;
+  // Background builds: the last contact point inside the current region, where the spring acts
+  // while the contact is outside it (contact_held_).
+  SurfacePoint held_point_;
+  bool contact_held_ = false;
+  double runaway_distance_ = 0;  // m: the mesh's bounding-box diagonal (divergence beyond it)
   std::vector<dynamics::AppliedForce> applied_;  // sized once: the contact triangle's nodes
   std::unique_ptr<regions::RegionTracker> regions_;  // the linked regions, or null
   std::size_t next_scheduled_cut_ = 0;  // regions: the config's cuts made so far

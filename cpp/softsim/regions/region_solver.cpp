@@ -150,7 +150,7 @@ void RegionSolver::start_from(const std::vector<double>& u, const std::vector<do
   }
   if (condensed_) {
     condensed_->drop_kept();  // a recovery kept for the state left behind
-    condensed_->start_modes(u_.data());
+    condensed_->start_modes(u_.data(), u.empty() || u_before.empty() ? nullptr : u_before.data());
   }
   last_update_ = stats_.frames;
   input_at_update_.assign(u_.begin(), u_.end());
@@ -166,7 +166,43 @@ void RegionSolver::frame(const std::vector<dynamics::AppliedForce>& forces) {
       throw InputError("regions: a force on node " + std::to_string(f.node) + ", outside the primary region's interior");
     applied_.push_back({local, f.force});
   }
-  const std::size_t contact_forces = applied_.size();
+  advance_frame(applied_.size());
+}
+
+void RegionSolver::frame_with_spring(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights,
+                                     const Eigen::Vector3d& anchor, double k) {
+  applied_.clear();
+  for (int a = 0; a < 3; ++a) {
+    if (region_.local[nodes[a]] < 0 || !region_.interior[nodes[a]])
+      throw InputError("regions: a force on node " + std::to_string(nodes[a]) + ", outside the primary region's interior");
+    spring_local_[a] = region_.local[nodes[a]];
+    applied_.push_back({spring_local_[a], Eigen::Vector3d::Zero()});
+  }
+  spring_weights_ = weights;
+  spring_anchor_ = anchor;
+  spring_k_ = k;
+  spring_ = true;
+  try {
+    advance_frame(3);
+  } catch (...) {
+    spring_ = false;
+    throw;
+  }
+  spring_ = false;
+}
+
+void RegionSolver::spring_forces() {
+  // x_c = Σ w_a (X_a + u_a) at this substep; the spring pulls it toward the anchor (the tip).
+  const double* u = solver_->displacement();
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int a = 0; a < 3; ++a)
+    x += spring_weights_[a] * (region_.submesh.nodes[spring_local_[a]] + Eigen::Vector3d(u + 3 * spring_local_[a]));
+  const Eigen::Vector3d f = spring_k_ * (spring_anchor_ - x);
+  if (!f.allFinite()) throw NumericalError("regions: the probe spring's force is not finite");
+  for (int a = 0; a < 3; ++a) applied_[a].force = spring_weights_[a] * f;
+}
+
+void RegionSolver::advance_frame(std::size_t contact_forces) {
   if (!condensed_) {
     // 001 Fig. 4: between updates the interface moves linearly from the previous update's values
     // to the last one's over `every` frames (one update late); held: the last values.
@@ -178,12 +214,21 @@ void RegionSolver::frame(const std::vector<dynamics::AppliedForce>& forces) {
         value[c] = interface_before_[3 * a + c] + s * (interface_last_[3 * a + c] - interface_before_[3 * a + c]);
       solver_->set_prescribed_displacement(static_cast<int>(a), value);
     }
-    solver_->set_applied_forces(applied_);
-    solver_->advance(substeps_);
+    if (!spring_) {
+      solver_->set_applied_forces(applied_);
+      solver_->advance(substeps_);
+    } else {
+      for (int k = 0; k < substeps_; ++k) {
+        spring_forces();
+        solver_->set_applied_forces(applied_);
+        solver_->advance(1);
+      }
+    }
   } else {
     // The condensed secondary acts at every substep, from the interface displacement of that
     // step (000 eq. 33 evaluates every internal force at u_n).
     for (int s = 0; s < substeps_; ++s) {
+      if (spring_) spring_forces();
       const double* u = solver_->displacement();
       for (std::size_t a = 0; a < region_.interface.size(); ++a)
         for (int c = 0; c < 3; ++c) interface_u_[3 * a + c] = u[3 * region_.interface_local[a] + c];
@@ -245,6 +290,11 @@ void RegionSolver::primary_previous(double* u) const {
   const double* now = solver_->displacement();
   const double dt = solver_->dt();
   for (std::size_t k = 0; k < v.size(); ++k) u[3 * region_.nodes[k / 3] + k % 3] = now[k] - dt * v[k];
+}
+
+void RegionSolver::previous_state(double* u) {
+  primary_previous(u);
+  if (condensed_) condensed_->recover_previous(u, gravity_factor());
 }
 
 void RegionSolver::refresh_secondary() {

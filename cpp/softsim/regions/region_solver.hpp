@@ -17,6 +17,7 @@
 // caller keeps every node a tool may touch interior (RegionTracker::cover). A topology change
 // (a cut) inside the primary region is the engine's local update; one that reaches the
 // secondary region invalidates its factorisation, and the caller builds the region anew.
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -118,6 +119,11 @@ class RegionSolver {
   void start_from(const std::vector<double>& u, const std::vector<double>& u_before);
   // One haptic frame with `forces` (global nodes, interior to the primary region) acting.
   void frame(const std::vector<dynamics::AppliedForce>& forces);
+  // One haptic frame with the probe's spring integrated at every substep instead of held over the
+  // frame: k (anchor − x_c) on the contact triangle's nodes (global, interior; barycentric
+  // `weights`), x_c from the current substep's displacement (HapticOptions::spring_coupling).
+  void frame_with_spring(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights, const Eigen::Vector3d& anchor,
+                         double k);
   // Whether a node is solved every frame with forces allowed on it.
   bool interior(int node) const { return region_.interior[node] != 0; }
   // The whole mesh's displacement as the regions publish it (3 per node): the primary region's
@@ -135,6 +141,11 @@ class RegionSolver {
   // The primary region's displacement one step ago into `u` (global layout; other nodes
   // untouched).
   void primary_previous(double* u) const;
+  // The whole published state one step ago into `u` (after refresh_secondary): the primary
+  // region's previous step, and (condensed) the far field recovered at that step from the
+  // interface's previous displacement and the modes' previous state, so a successor resumes the
+  // far field's motion too.
+  void previous_state(double* u);
   const PrimaryRegion& region() const { return region_; }
 
   // ---- rigid tools (the model's boundary.tools, on the primary interior's nodes) ----
@@ -154,6 +165,9 @@ class RegionSolver {
 
  private:
   void publish_primary();
+  // The spring's force on its three nodes at the current substep into applied_[0..2].
+  void spring_forces();
+  void advance_frame(std::size_t contact_forces);
   // The published displacement of the interface nodes into `out` (3 per interface node).
   void published_interface(std::vector<double>& out) const;
   void secondary_update(bool forced = false);
@@ -178,6 +192,11 @@ class RegionSolver {
   std::vector<double> interface_u_, interface_f_;
   std::vector<dynamics::AppliedForce> applied_;  // contact forces (local nodes) + interface forces
   std::vector<double> input_at_update_;          // what the last secondary update saw (skipping)
+  // The spring of frame_with_spring during that frame: local nodes, weights, anchor, stiffness.
+  bool spring_ = false;
+  std::array<int, 3> spring_local_{};
+  Eigen::Vector3d spring_weights_ = Eigen::Vector3d::Zero(), spring_anchor_ = Eigen::Vector3d::Zero();
+  double spring_k_ = 0;
   mutable RegionStats stats_;  // a deferred recovery done on reading counts and times itself
   // Condensed: solves the deferred recovery, if one is kept, into u_.
   void recover_far_field() const;

@@ -165,6 +165,7 @@ void RegionTracker::set_centre(int centre) {
 void RegionTracker::follow(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights, long frame) {
   int a = 0;
   weights.maxCoeff(&a);
+  contact_node_ = nodes[a];
   const bool inside = active_ && active_->interior(nodes[0]) && active_->interior(nodes[1]) && active_->interior(nodes[2]);
   const int centre = inside ? centre_ : nodes[a];
   set_centre(centre);
@@ -321,8 +322,15 @@ void RegionTracker::between_frames(long frame) {
     else
       ++builds_.frames_while_building;
   }
-  // A cut reached the active region's far field and nothing is on its way for it: ask now.
-  if (active_stale_ && !pending_.valid() && active_) request(centre_, active_level_, frame, true);
+  // A cut reached the active region's far field and nothing is on its way for it: ask now, around
+  // the contact's node if it has moved on far enough to want a region of its own (one build
+  // serves both), else where the region is.
+  if (active_stale_ && !pending_.valid() && active_) {
+    const bool moved = options_.build_in_background && contact_node_ >= 0 &&
+                       (mesh_->nodes[contact_node_] - mesh_->nodes[centre_]).norm() >
+                           options_.prefetch_fraction * active_->region().radius;
+    request(moved ? contact_node_ : centre_, active_level_, frame, true);
+  }
 }
 
 void RegionTracker::take_finished() {
@@ -339,11 +347,12 @@ void RegionTracker::take_finished() {
   swap_in(std::move(done));
 }
 
-void RegionTracker::published_state(std::vector<double>& u, std::vector<double>& u_before) {
+void RegionTracker::published_state(std::vector<double>& u, std::vector<double>& u_before, std::size_t n3) {
+  if (n3 == 0) n3 = rest_.size();
   active_->refresh_secondary();
-  u.assign(active_->displacement(), active_->displacement() + rest_.size());
+  u.assign(active_->displacement(), active_->displacement() + n3);
   u_before = u;
-  active_->primary_previous(u_before.data());
+  active_->previous_state(u_before.data());
 }
 
 void RegionTracker::swap_in(Finished&& done) {
@@ -431,9 +440,10 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
     }
     // The active region's secondary factorisation (and condensed interface) no longer holds:
     // the region is built anew on the cut mesh and resumes from the state it published.
-    std::vector<double> u(active_->displacement(), active_->displacement() + n3_before);
-    std::vector<double> u_before = u;
-    active_->primary_previous(u_before.data());
+    // Brought up to date first: a far field recovered rarely (a large secondary_every) would
+    // otherwise hand its successor a stale far field and modes (a transient after the cut).
+    std::vector<double> u, u_before;
+    published_state(u, u_before, n3_before);
     // Each node copy starts from its node's state (a separation keeps every velocity).
     u.resize(rest_.size(), 0.0);
     u_before.resize(rest_.size(), 0.0);
@@ -468,6 +478,13 @@ void RegionTracker::topology_changed(const TopologyChange& change) {
 void RegionTracker::frame(const std::vector<dynamics::AppliedForce>& forces) {
   if (!active_) return;
   active_->frame(forces);
+  ++level_frames_[std::max(active_level_, 0)];
+}
+
+void RegionTracker::frame_with_spring(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights,
+                                      const Eigen::Vector3d& anchor, double k) {
+  if (!active_) return;
+  active_->frame_with_spring(nodes, weights, anchor, k);
   ++level_frames_[std::max(active_level_, 0)];
 }
 

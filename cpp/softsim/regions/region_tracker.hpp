@@ -74,6 +74,9 @@ class RegionTracker {
   int count_late_contacts(const std::vector<int>& touched);
   // One frame of the active region (none yet: nothing moves).
   void frame(const std::vector<dynamics::AppliedForce>& forces);
+  // One frame with the probe's spring integrated at every substep (RegionSolver::frame_with_spring).
+  void frame_with_spring(const std::array<int, 3>& nodes, const Eigen::Vector3d& weights, const Eigen::Vector3d& anchor,
+                         double k);
   // One frame with rigid tool k at `centre` (none active yet: nothing moves, no force).
   void frame_with_tool(int k, const Eigen::Vector3d& centre);
   Eigen::Vector3d tool_force(int k) const { return active_ ? active_->tool_force(k) : Eigen::Vector3d::Zero(); }
@@ -134,7 +137,8 @@ class RegionTracker {
   // The worker's region made active, starting from the state the active one publishes.
   void swap_in(Finished&& done);
   // The state the active region publishes, brought up to date (what a successor starts from).
-  void published_state(std::vector<double>& u, std::vector<double>& u_before);
+  // `n3`: its length (0: the current mesh's 3 × nodes; before a separation's copies, the old).
+  void published_state(std::vector<double>& u, std::vector<double>& u_before, std::size_t n3 = 0);
 
   const mesh::TetMesh* mesh_;
   hybrid::DhdConfig model_;
@@ -160,6 +164,7 @@ class RegionTracker {
   long pending_frame_ = 0;
   long generation_ = 0;
   bool active_stale_ = false;
+  int contact_node_ = -1;  // the contact's node of largest weight at the last follow()
   RegionSolver* active_ = nullptr;
   int active_level_ = -1;
   RegionStats active_from_;  // the active region's statistics when it became active

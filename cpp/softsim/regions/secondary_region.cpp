@@ -191,15 +191,29 @@ void CondensedSecondary::use_modes(int count, double dt, double damping_alpha) {
   cd_C_ = cd.C;
 }
 
-void CondensedSecondary::start_modes(const double* u) {
+void CondensedSecondary::start_modes(const double* u) { start_modes(u, nullptr); }
+
+void CondensedSecondary::start_modes(const double* u, const double* u_before) {
   if (modes() == 0) return;
-  for (int j = 0; j < modes(); ++j) {
-    double s = 0;
-    for (std::size_t k = 0; k < secondary_.size(); ++k)
-      s += phi_(static_cast<int>(k), j) * model_->masses[secondary_[k] / 3] * u[secondary_[k]];
-    z_[j] = s;
-  }
-  z_before_ = z_;
+  auto project = [&](const double* v, Eigen::VectorXd& z) {
+    for (int j = 0; j < modes(); ++j) {
+      double s = 0;
+      for (std::size_t k = 0; k < secondary_.size(); ++k)
+        s += phi_(static_cast<int>(k), j) * model_->masses[secondary_[k] / 3] * v[secondary_[k]];
+      z[j] = s;
+    }
+  };
+  project(u, z_);
+  if (u_before)
+    project(u_before, z_before_);
+  else
+    z_before_ = z_;
+}
+
+void CondensedSecondary::recover_previous(double* u_before, double gravity_factor) {
+  keep_for_recovery(u_before, gravity_factor);
+  if (modes() > 0) kept_z_ = z_before_;
+  recover_kept(u_before);
 }
 
 void CondensedSecondary::advance_modes() {

@@ -125,6 +125,12 @@ class CondensedSecondary {
   const Eigen::VectorXd& mode_omega2() const { return omega2_; }
   // Modes: the state from the far field's displacement in `u` (global), at rest: z = Φᵀ M_SS u_S.
   void start_modes(const double* u);
+  // The same with the far field's displacement one step earlier in `u_before` (global, or null:
+  // at rest): the modes resume with their velocity, z_before = Φᵀ M_SS u_S(before).
+  void start_modes(const double* u, const double* u_before);
+  // The far field one explicit step ago into `u_before` (global): recovered from the interface's
+  // displacement in `u_before` and the modes' state of that step. No allocation after the first.
+  void recover_previous(double* u_before, double gravity_factor);
   // Modes: one explicit step of every mode, forced by the interface displacement the last
   // interface_force() saw (000 eq. 33 with unit modal mass). No allocation.
   void advance_modes();
