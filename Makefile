@@ -13,7 +13,7 @@ export CCACHE_BASEDIR ?= $(CURDIR)
 # PIPELINE_FLAGS="--scheduler tcp://HOST:8786 -j 256" (a later -j wins over JOBS)
 PIPELINE_FLAGS ?=
 
-.PHONY: all setup configure build python-link python-unlink demo test test-ci test-all reproduce reproduce-quick report \
+.PHONY: all setup configure build python-link python-unlink demo view test test-ci test-all reproduce reproduce-quick report \
         bench fuzz test-sanitize clean
 
 all: build
@@ -51,6 +51,12 @@ demo: configure
 	@$(BUILD)/examples/step_scene $(BUILD)/demo/press.csv
 	@echo "demo: force on the tool against tip depth, one line per 1 ms frame: $(BUILD)/demo/press.csv"
 	@tail -n 3 $(BUILD)/demo/press.csv
+
+# The live liver in a browser: meshes it once (build/view/), then `haptic_sim view` on
+# http://127.0.0.1:$(VIEW_PORT)/ until Ctrl-C (pipeline/view_scene.py).
+VIEW_PORT ?= 8080
+view: build
+	@$(PYTHON) -m pipeline.view_scene --port $(VIEW_PORT)
 
 # Tests. `make test` is the quick suite (a few minutes on two cores); the checks labelled slow
 # (ctest label `slow`, pytest marker `slow`) run in `make test-all`; CI runs `make test-ci`, the
