@@ -7,6 +7,7 @@
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_response.hpp"
 #include "softsim/fem/law_kernels.hpp"
+#include "softsim/fem/nodal_pressure.hpp"
 
 namespace softsim::fem {
 
@@ -36,6 +37,7 @@ double ElementSet::relative_cost(ElementKind kind) {
     case ElementKind::tled: return 1.0;
     case ElementKind::corotational: return 4.8;
     case ElementKind::anp: return 1.8;  // with its nodal-pressure pre-pass
+    case ElementKind::smoothed: return 4.0;  // scalar path with its edge pre-pass (validation_incompressible)
   }
   return 1.0;
 }
@@ -131,6 +133,7 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
 }
 
 std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements) {
+  if (smoothing_) throw std::invalid_argument("ElementSet: smoothed elements cannot be cut (their edge domains are fixed)");
   std::vector<int> done;
   std::vector<int> anp_nodes;
   for (int e : elements) {
@@ -173,6 +176,7 @@ void ElementSet::reweigh_nodal_volume(int a) {
 }
 
 void ElementSet::split_nodes(const mesh::TetMesh& mesh, const std::vector<NodeCopy>& copies) {
+  if (smoothing_) throw std::invalid_argument("ElementSet: smoothed elements cannot be cut (their edge domains are fixed)");
   for (std::size_t k = 0; k < copies.size(); ++k) {
     const NodeCopy& c = copies[k];
     if (c.copy != num_nodes_ + static_cast<int>(k) || c.copy >= mesh.num_nodes())
@@ -234,6 +238,34 @@ void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
   for (int& e : anp_.element) e = slot[e];
   volume_ratio_.assign(stride_, 1.0);
   nodal_pressure_.assign(3 * static_cast<std::size_t>(num_nodes_), 0.0);
+  if (count(ElementKind::smoothed) > 0) {
+    std::vector<TetShape> shapes(mesh.num_tets());
+    for (int e = 0; e < mesh.num_tets(); ++e) shapes[e] = shape(slot[e]);
+    smoothing_.emplace(mesh, kinds_, shapes);
+    smoothed_gradient_.assign(mesh.num_tets(), Eigen::Matrix3d::Identity());
+    edge_stress_.assign(smoothing_->num_edges(), Eigen::Matrix3d::Zero());
+  }
+}
+
+// Corner forces ⁰V (P̄_iso + p̄ cof F) ∇N_a of the smoothed slots [begin, end): P̄_iso the mean
+// of the element's six edge stresses, p̄ the mean of its corners' nodal pressures.
+void ElementSet::compute_smoothed(const double* u, int begin, int end) {
+  (void)u;  // F was stored by the pre-pass
+  double* __restrict buffer = buffer_.data();
+  for (int i = begin; i < end; ++i) {
+    const int e = original_[i];
+    Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+    if (e >= 0) {
+      double pbar = 0;
+      for (int a = 0; a < 4; ++a) pbar += 0.25 * nodal_pressure_[node_offset_[a][i]];
+      P = volume_[i] * (smoothing_->element_stress(e, edge_stress_.data()) + pbar * cofactor(smoothed_gradient_[e]));
+    }
+    const TetShape sh = shape(i);
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Vector3d f = P * sh.grad[a];
+      for (int c = 0; c < 3; ++c) buffer[static_cast<std::size_t>(3 * a + c) * stride_ + i] = f[c];
+    }
+  }
 }
 
 void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& stats) {
@@ -246,6 +278,17 @@ void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& s
     double& min_j = inversion_allowed(ElementKind::anp) ? unchecked : stats.min_j;
     if (b < e) kernels::volume_ratio_kernel(view(), u, b, e, volume_ratio_.data(), min_j);
   }
+  for (int gi = 0; gi < G; ++gi) {
+    if (groups_[gi].kind != ElementKind::smoothed) continue;
+    const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
+    for (int i = b; i < e; ++i) {
+      if (original_[i] < 0) continue;
+      const Eigen::Matrix3d F = deformation_gradient(shape(i), corners(i, u));
+      smoothed_gradient_[original_[i]] = F;
+      volume_ratio_[i] = F.determinant();
+      stats.min_j = std::min(stats.min_j, volume_ratio_[i]);
+    }
+  }
 }
 
 void ElementSet::update_nodal_pressures(int begin, int end) {
@@ -253,6 +296,9 @@ void ElementSet::update_nodal_pressures(int begin, int end) {
   for (int a = begin; a < end; ++a)
     if (anp_.has_elements(a))
       nodal_pressure_[3 * static_cast<std::size_t>(a)] = kappa * (nodal_volume_ratio(anp_, a, volume_ratio_.data()) - 1.0);
+  if (smoothing_)
+    smoothing_->edge_stresses(material_, smoothed_gradient_.data(), smoothing_->node_edge_begin(begin),
+                              smoothing_->node_edge_begin(end), edge_stress_.data());
 }
 
 double ElementSet::nodal_volumetric_energy(const double* volume_ratio) const {
@@ -397,6 +443,7 @@ void ElementSet::compute_group(const Group& g, const double* u, int begin, int e
       kernels::anp_forces(material_.isochoric, s, u, begin, end, nodal_pressure_.data(), scratch_.data(), stats.min_j,
                           law_data(clock));
       break;
+    case ElementKind::smoothed: compute_smoothed(u, begin, end); break;
   }
 }
 
@@ -468,6 +515,10 @@ void ElementSet::energies(const double* u, int begin, int end, double* energy, d
     if (J < min_j && !may_invert) {
       min_j = J;
       min_j_element = e;
+    }
+    if (kinds_[e] == ElementKind::smoothed) {  // its share of its edges' isochoric energy
+      energy[i] = smoothing_->element_energy(material_, e, u);
+      continue;
     }
     energy[i] = J > 0 || may_invert || kinds_[e] == ElementKind::linear
                     ? with_element_material(material_, e, [&](const Material& m) { return element_energy(m, kinds_[e], sh, c); })
