@@ -124,6 +124,8 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
       }
   }
   state_size_ = material::state_size(material_.law);
+  if (state_size_ > 0 && count(ElementKind::smoothed) > 0)
+    throw std::invalid_argument("ElementSet: smoothed elements take no law with internal variables");
   if (state_size_ > 0)
     for (auto& v : law_state_) v.assign(static_cast<std::size_t>(state_size_) * stride_, 0.0);
   slot_of_.assign(mesh.num_tets(), -1);
