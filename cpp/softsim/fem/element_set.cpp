@@ -249,6 +249,21 @@ void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
   }
 }
 
+// F = I + Σ_{a=1..3} (u_a − u_0) ⊗ ∇N_a of slot i, straight from the stored gradients (∇N_0 is
+// minus the sum of the others).
+Eigen::Matrix3d ElementSet::slot_gradient(int i, const double* u) const {
+  const double* u0 = u + node_offset_[0][i];
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  for (int a = 1; a < 4; ++a) {
+    const double* ua = u + node_offset_[a][i];
+    for (int r = 0; r < 3; ++r) {
+      const double d = ua[r] - u0[r];
+      for (int c = 0; c < 3; ++c) F(r, c) += d * grad_[3 * (a - 1) + c][i];
+    }
+  }
+  return F;
+}
+
 // Corner forces ⁰V (P̄_iso + p̄ cof F) ∇N_a of the smoothed slots [begin, end): P̄_iso the mean
 // of the element's six edge stresses, p̄ the mean of its corners' nodal pressures.
 void ElementSet::compute_smoothed(const double* u, int begin, int end) {
@@ -262,11 +277,15 @@ void ElementSet::compute_smoothed(const double* u, int begin, int end) {
       for (int a = 0; a < 4; ++a) pbar += 0.25 * nodal_pressure_[node_offset_[a][i]];
       P = volume_[i] * (smoothing_->element_stress(e, edge_stress_.data()) + pbar * cofactor(smoothed_gradient_[e]));
     }
-    const TetShape sh = shape(i);
-    for (int a = 0; a < 4; ++a) {
-      const Eigen::Vector3d f = P * sh.grad[a];
-      for (int c = 0; c < 3; ++c) buffer[static_cast<std::size_t>(3 * a + c) * stride_ + i] = f[c];
-    }
+    double f0[3] = {0, 0, 0};
+    for (int a = 1; a < 4; ++a)
+      for (int r = 0; r < 3; ++r) {
+        const double f = P(r, 0) * grad_[3 * (a - 1)][i] + P(r, 1) * grad_[3 * (a - 1) + 1][i] +
+                         P(r, 2) * grad_[3 * (a - 1) + 2][i];
+        buffer[static_cast<std::size_t>(3 * a + r) * stride_ + i] = f;
+        f0[r] -= f;
+      }
+    for (int r = 0; r < 3; ++r) buffer[static_cast<std::size_t>(r) * stride_ + i] = f0[r];
   }
 }
 
@@ -285,7 +304,7 @@ void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& s
     const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
     for (int i = b; i < e; ++i) {
       if (original_[i] < 0) continue;
-      const Eigen::Matrix3d F = deformation_gradient(shape(i), corners(i, u));
+      const Eigen::Matrix3d F = slot_gradient(i, u);
       smoothed_gradient_[original_[i]] = F;
       volume_ratio_[i] = F.determinant();
       stats.min_j = std::min(stats.min_j, volume_ratio_[i]);
