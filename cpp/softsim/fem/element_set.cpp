@@ -135,7 +135,6 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
 }
 
 std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const std::vector<int>& elements) {
-  if (smoothing_) throw std::invalid_argument("ElementSet: smoothed elements cannot be cut (their edge domains are fixed)");
   std::vector<int> done;
   std::vector<int> anp_nodes;
   for (int e : elements) {
@@ -147,7 +146,7 @@ std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const st
     done.push_back(e);
     const int i = slot_of_[e];
     if (kinds_[e] == ElementKind::linear && assembled_linear()) linear_rows_.remove_element(mesh, e, material_);
-    if (kinds_[e] == ElementKind::anp)
+    if (volumetric_at_nodes(kinds_[e]))
       for (int a : mesh.tets[e]) anp_nodes.push_back(a);
     for (auto& g : grad_) g[i] = 0.0;
     volume_[i] = 0.0;
@@ -160,7 +159,21 @@ std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const st
   std::sort(anp_nodes.begin(), anp_nodes.end());
   anp_nodes.erase(std::unique(anp_nodes.begin(), anp_nodes.end()), anp_nodes.end());
   for (int a : anp_nodes) reweigh_nodal_volume(a);
+  if (smoothing_ && !done.empty()) rebuild_smoothing(mesh);
   return done;
+}
+
+// The smoothing edges of the smoothed elements still in `mesh` (not removed), from scratch: a
+// cut changes the domains of the edges around it (and a split the edges' nodes).
+void ElementSet::rebuild_smoothing(const mesh::TetMesh& mesh) {
+  std::vector<ElementKind> live = kinds_;
+  std::vector<TetShape> shapes(mesh.num_tets());
+  for (int e = 0; e < mesh.num_tets(); ++e) {
+    if (removed_[e]) live[e] = ElementKind::linear;  // any kind but smoothed: no edge domain
+    shapes[e] = shape(slot_of_[e]);
+  }
+  smoothing_.emplace(mesh, live, shapes);
+  edge_stress_.assign(smoothing_->num_edges(), Eigen::Matrix3d::Zero());
 }
 
 // V_a = Σ ⁰V_e / 4 over the ANP elements still at node a (a removed one has ⁰V = 0; one a split
@@ -178,7 +191,6 @@ void ElementSet::reweigh_nodal_volume(int a) {
 }
 
 void ElementSet::split_nodes(const mesh::TetMesh& mesh, const std::vector<NodeCopy>& copies) {
-  if (smoothing_) throw std::invalid_argument("ElementSet: smoothed elements cannot be cut (their edge domains are fixed)");
   for (std::size_t k = 0; k < copies.size(); ++k) {
     const NodeCopy& c = copies[k];
     if (c.copy != num_nodes_ + static_cast<int>(k) || c.copy >= mesh.num_nodes())
@@ -225,6 +237,7 @@ void ElementSet::split_nodes(const mesh::TetMesh& mesh, const std::vector<NodeCo
       nodal_pressure_.resize(3 * static_cast<std::size_t>(num_nodes_), 0.0);
     }
   }
+  if (smoothing_ && !copies.empty()) rebuild_smoothing(mesh);
 }
 
 void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
@@ -272,7 +285,7 @@ void ElementSet::compute_smoothed(const double* u, int begin, int end) {
   for (int i = begin; i < end; ++i) {
     const int e = original_[i];
     Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
-    if (e >= 0) {
+    if (e >= 0 && !removed_[e]) {
       double pbar = 0;
       for (int a = 0; a < 4; ++a) pbar += 0.25 * nodal_pressure_[node_offset_[a][i]];
       P = volume_[i] * (smoothing_->element_stress(e, edge_stress_.data()) + pbar * cofactor(smoothed_gradient_[e]));
@@ -538,7 +551,7 @@ void ElementSet::energies(const double* u, int begin, int end, double* energy, d
       min_j_element = e;
     }
     if (kinds_[e] == ElementKind::smoothed) {  // its share of its edges' isochoric energy
-      energy[i] = smoothing_->element_energy(material_, e, u);
+      energy[i] = removed_[e] ? 0.0 : smoothing_->element_energy(material_, e, u);
       continue;
     }
     energy[i] = J > 0 || may_invert || kinds_[e] == ElementKind::linear

@@ -209,6 +209,7 @@ class ElementSet {
   void build_tiles(const std::vector<int>& key, int tile_nodes);
   void build_nodal_pressure(const mesh::TetMesh& mesh);
   void compute_smoothed(const double* u, int begin, int end);
+  void rebuild_smoothing(const mesh::TetMesh& mesh);
   Eigen::Matrix3d slot_gradient(int i, const double* u) const;
   void reweigh_nodal_volume(int node);
   kernels::SoaView view();
