@@ -12,6 +12,9 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#ifdef SOFTSIM_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
 
 #include "softsim/dynamics/lumped_mass.hpp"
 #include "softsim/fem/assembly.hpp"
@@ -28,11 +31,30 @@ double inf_norm_free(const Eigen::VectorXd& r, const std::vector<char>& mask) {
   return m;
 }
 
+// K is symmetric positive definite away from instabilities: CHOLMOD's supernodal Cholesky when the
+// build has it (the ANP and smoothed tangents couple each node's whole patch, and the simplicial
+// factor of that wider stencil took 95 % of a 10 240-tet static solve), else Eigen's simplicial
+// LDLᵀ; LU when the factorisation fails (an indefinite tangent).
 class LinearSolver {
  public:
-  explicit LinearSolver(const Eigen::SparseMatrix<double>& pattern) { ldlt_.analyzePattern(pattern); }
+  explicit LinearSolver(const Eigen::SparseMatrix<double>& pattern) {
+#ifdef SOFTSIM_HAVE_CHOLMOD
+    llt_.analyzePattern(pattern);
+#else
+    ldlt_.analyzePattern(pattern);
+#endif
+  }
   bool solve(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+#ifdef SOFTSIM_HAVE_CHOLMOD
+    llt_.factorize(K);
+    if (llt_.info() == Eigen::Success) {
+      x = llt_.solve(b);
+      if (llt_.info() == Eigen::Success && x.allFinite()) return true;
+    }
+    ldlt_.compute(K);
+#else
     ldlt_.factorize(K);
+#endif
     if (ldlt_.info() == Eigen::Success) {
       x = ldlt_.solve(b);
       if (ldlt_.info() == Eigen::Success && x.allFinite()) return true;
@@ -44,6 +66,9 @@ class LinearSolver {
   }
 
  private:
+#ifdef SOFTSIM_HAVE_CHOLMOD
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> llt_;
+#endif
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
 };

@@ -23,7 +23,8 @@ Assembler::Assembler(const mesh::TetMesh& mesh, const std::vector<ElementKind>& 
       kinds_(kinds),
       material_(material),
       shapes_(tet_shapes(mesh)),
-      nodal_pressure_(mesh, kinds, shapes_, material.volumetric_modulus) {
+      nodal_pressure_(mesh, kinds, shapes_, material.volumetric_modulus),
+      edge_smoothing_(mesh, kinds, shapes_) {
   const int n = 3 * num_nodes_;
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(tets_.size() * 144);
@@ -32,7 +33,10 @@ Assembler::Assembler(const mesh::TetMesh& mesh, const std::vector<ElementKind>& 
       for (int i = 0; i < 3; ++i)
         for (int b = 0; b < 4; ++b)
           for (int k = 0; k < 3; ++k) triplets.emplace_back(3 * t[a] + i, 3 * t[b] + k, 0.0);
-  for (const auto& [b, c] : nodal_pressure_.coupled_nodes())
+  std::vector<std::pair<int, int>> coupled = nodal_pressure_.coupled_nodes();
+  const std::vector<std::pair<int, int>> edge_coupled = edge_smoothing_.coupled_nodes();
+  coupled.insert(coupled.end(), edge_coupled.begin(), edge_coupled.end());
+  for (const auto& [b, c] : coupled)
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k) triplets.emplace_back(3 * b + i, 3 * c + k, 0.0);
   pattern_.resize(n, n);
@@ -59,12 +63,14 @@ Assembler::Assembler(const mesh::TetMesh& mesh, const std::vector<ElementKind>& 
 void Assembler::internal_forces(const double* u, Eigen::VectorXd& f) const {
   f.setZero(3 * num_nodes_);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
+    if (kinds_[e] == ElementKind::smoothed) continue;  // edge_smoothing_
     const Corners fe = with_element_material(material_, e, [&](const Material& m) {
       return element_forces(m, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
     });
     for (int a = 0; a < 4; ++a) f.segment<3>(3 * tets_[e][a]) += fe[a];
   }
   nodal_pressure_.add_forces(u, f);
+  edge_smoothing_.add_forces(material_, u, f);
 }
 
 void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
@@ -72,6 +78,7 @@ void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
   double* values = K.valuePtr();
   std::fill(values, values + K.nonZeros(), 0.0);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
+    if (kinds_[e] == ElementKind::smoothed) continue;  // edge_smoothing_
     const ElementMatrix Ke = with_element_material(material_, e, [&](const Material& m) {
       return element_tangent(m, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
     });
@@ -80,15 +87,17 @@ void Assembler::tangent(const double* u, Eigen::SparseMatrix<double>& K) const {
       for (int c = 0; c < 12; ++c) values[idx[r * 12 + c]] += Ke(r, c);
   }
   nodal_pressure_.add_tangent(u, K);
+  edge_smoothing_.add_tangent(material_, u, K);
 }
 
 double Assembler::strain_energy(const double* u) const {
   double w = 0;
   for (std::size_t e = 0; e < tets_.size(); ++e)
-    w += with_element_material(material_, e, [&](const Material& m) {
-      return element_energy(m, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
-    });
-  return w + nodal_pressure_.energy(u);
+    if (kinds_[e] != ElementKind::smoothed)
+      w += with_element_material(material_, e, [&](const Material& m) {
+        return element_energy(m, kinds_[e], shapes_[e], corner_displacements(tets_[e], u));
+      });
+  return w + nodal_pressure_.energy(u) + edge_smoothing_.energy(material_, u);
 }
 
 double Assembler::min_volume_ratio(const double* u, int* element) const {

@@ -1,13 +1,15 @@
 #pragma once
 // Global assembly for the implicit (static) solver: the internal force vector Σₑ Fₑ
 // (000 eq. 27) and the sparse consistent tangent K(u) = ∂F/∂u, from the reference element
-// functions, plus the nodal volumetric part of ANP elements (nodal_pressure.hpp). Serial; the
+// functions, plus the nodal volumetric part of ANP and smoothed elements (nodal_pressure.hpp)
+// and the edge-smoothed isochoric part of smoothed elements (edge_smoothing.hpp). Serial; the
 // sparsity pattern and the element → value map are built once.
 #include <vector>
 
 #include <Eigen/Sparse>
 
 #include "softsim/fem/constitutive.hpp"
+#include "softsim/fem/edge_smoothing.hpp"
 #include "softsim/fem/element_kind.hpp"
 #include "softsim/fem/nodal_pressure.hpp"
 #include "softsim/fem/tet_geometry.hpp"
@@ -39,6 +41,7 @@ class Assembler {
   Material material_;
   std::vector<TetShape> shapes_;
   NodalPressure nodal_pressure_;
+  EdgeSmoothing edge_smoothing_;  // the isochoric part of smoothed elements
   Eigen::SparseMatrix<double> pattern_;
   std::vector<int> value_index_;  // 144 per element: position in pattern_.valuePtr()
 };

@@ -40,7 +40,8 @@ Eigen::Matrix3d first_piola(const Material& m, ElementKind kind, const Eigen::Ma
     case ElementKind::linear: return material::linear_stress(m.lame, F);
     case ElementKind::tled: return material::first_piola(m.law, F);
     case ElementKind::corotational: return material::corotated_first_piola(m.lame, F);
-    case ElementKind::anp: return material::first_piola(m.isochoric, F);
+    case ElementKind::anp:
+    case ElementKind::smoothed: return material::first_piola(m.isochoric, F);
   }
   return Eigen::Matrix3d::Zero();
 }
@@ -50,7 +51,8 @@ double energy_density(const Material& m, ElementKind kind, const Eigen::Matrix3d
     case ElementKind::linear: return material::linear_energy_density(m.lame, F);
     case ElementKind::tled: return material::strain_energy_density(m.law, F);
     case ElementKind::corotational: return material::corotated_energy_density(m.lame, F);
-    case ElementKind::anp: return material::strain_energy_density(m.isochoric, F);
+    case ElementKind::anp:
+    case ElementKind::smoothed: return material::strain_energy_density(m.isochoric, F);
   }
   return 0.0;
 }
@@ -61,7 +63,8 @@ FirstPiolaLinearisation::FirstPiolaLinearisation(const Material& m, ElementKind 
     case ElementKind::linear: break;  // dP does not depend on F
     case ElementKind::tled: law_ = material::linearise(m.law, F); break;
     case ElementKind::corotational: corotated_ = material::corotated_linearise(F); break;
-    case ElementKind::anp: law_ = material::linearise(m.isochoric, F); break;
+    case ElementKind::anp:
+    case ElementKind::smoothed: law_ = material::linearise(m.isochoric, F); break;
   }
 }
 
@@ -71,7 +74,8 @@ Eigen::Matrix3d FirstPiolaLinearisation::increment(const Eigen::Matrix3d& dF) co
     case ElementKind::linear: return material::linear_stress_increment(m.lame, dF);
     case ElementKind::tled: return material::first_piola_increment(m.law, law_, dF);
     case ElementKind::corotational: return material::corotated_first_piola_increment(m.lame, corotated_, dF);
-    case ElementKind::anp: return material::first_piola_increment(m.isochoric, law_, dF);
+    case ElementKind::anp:
+    case ElementKind::smoothed: return material::first_piola_increment(m.isochoric, law_, dF);
   }
   return Eigen::Matrix3d::Zero();
 }

@@ -7,6 +7,7 @@
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_response.hpp"
 #include "softsim/fem/law_kernels.hpp"
+#include "softsim/fem/nodal_pressure.hpp"
 
 namespace softsim::fem {
 
@@ -36,6 +37,7 @@ double ElementSet::relative_cost(ElementKind kind) {
     case ElementKind::tled: return 1.0;
     case ElementKind::corotational: return 4.8;
     case ElementKind::anp: return 1.8;  // with its nodal-pressure pre-pass
+    case ElementKind::smoothed: return 9.0;  // scalar path with its edge pre-pass (results/validation/incompressible_cost.md)
   }
   return 1.0;
 }
@@ -122,6 +124,8 @@ ElementSet::ElementSet(const mesh::TetMesh& mesh, const std::vector<ElementKind>
       }
   }
   state_size_ = material::state_size(material_.law);
+  if (state_size_ > 0 && count(ElementKind::smoothed) > 0)
+    throw std::invalid_argument("ElementSet: smoothed elements take no law with internal variables");
   if (state_size_ > 0)
     for (auto& v : law_state_) v.assign(static_cast<std::size_t>(state_size_) * stride_, 0.0);
   slot_of_.assign(mesh.num_tets(), -1);
@@ -142,7 +146,7 @@ std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const st
     done.push_back(e);
     const int i = slot_of_[e];
     if (kinds_[e] == ElementKind::linear && assembled_linear()) linear_rows_.remove_element(mesh, e, material_);
-    if (kinds_[e] == ElementKind::anp)
+    if (volumetric_at_nodes(kinds_[e]))
       for (int a : mesh.tets[e]) anp_nodes.push_back(a);
     for (auto& g : grad_) g[i] = 0.0;
     volume_[i] = 0.0;
@@ -155,7 +159,21 @@ std::vector<int> ElementSet::remove_elements(const mesh::TetMesh& mesh, const st
   std::sort(anp_nodes.begin(), anp_nodes.end());
   anp_nodes.erase(std::unique(anp_nodes.begin(), anp_nodes.end()), anp_nodes.end());
   for (int a : anp_nodes) reweigh_nodal_volume(a);
+  if (smoothing_ && !done.empty()) rebuild_smoothing(mesh);
   return done;
+}
+
+// The smoothing edges of the smoothed elements still in `mesh` (not removed), from scratch: a
+// cut changes the domains of the edges around it (and a split the edges' nodes).
+void ElementSet::rebuild_smoothing(const mesh::TetMesh& mesh) {
+  std::vector<ElementKind> live = kinds_;
+  std::vector<TetShape> shapes(mesh.num_tets());
+  for (int e = 0; e < mesh.num_tets(); ++e) {
+    if (removed_[e]) live[e] = ElementKind::linear;  // any kind but smoothed: no edge domain
+    shapes[e] = shape(slot_of_[e]);
+  }
+  smoothing_.emplace(mesh, live, shapes);
+  edge_stress_.assign(smoothing_->num_edges(), Eigen::Matrix3d::Zero());
 }
 
 // V_a = Σ ⁰V_e / 4 over the ANP elements still at node a (a removed one has ⁰V = 0; one a split
@@ -219,6 +237,7 @@ void ElementSet::split_nodes(const mesh::TetMesh& mesh, const std::vector<NodeCo
       nodal_pressure_.resize(3 * static_cast<std::size_t>(num_nodes_), 0.0);
     }
   }
+  if (smoothing_ && !copies.empty()) rebuild_smoothing(mesh);
 }
 
 void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
@@ -234,6 +253,53 @@ void ElementSet::build_nodal_pressure(const mesh::TetMesh& mesh) {
   for (int& e : anp_.element) e = slot[e];
   volume_ratio_.assign(stride_, 1.0);
   nodal_pressure_.assign(3 * static_cast<std::size_t>(num_nodes_), 0.0);
+  if (count(ElementKind::smoothed) > 0) {
+    std::vector<TetShape> shapes(mesh.num_tets());
+    for (int e = 0; e < mesh.num_tets(); ++e) shapes[e] = shape(slot[e]);
+    smoothing_.emplace(mesh, kinds_, shapes);
+    smoothed_gradient_.assign(mesh.num_tets(), Eigen::Matrix3d::Identity());
+    edge_stress_.assign(smoothing_->num_edges(), Eigen::Matrix3d::Zero());
+  }
+}
+
+// F = I + Σ_{a=1..3} (u_a − u_0) ⊗ ∇N_a of slot i, straight from the stored gradients (∇N_0 is
+// minus the sum of the others).
+Eigen::Matrix3d ElementSet::slot_gradient(int i, const double* u) const {
+  const double* u0 = u + node_offset_[0][i];
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  for (int a = 1; a < 4; ++a) {
+    const double* ua = u + node_offset_[a][i];
+    for (int r = 0; r < 3; ++r) {
+      const double d = ua[r] - u0[r];
+      for (int c = 0; c < 3; ++c) F(r, c) += d * grad_[3 * (a - 1) + c][i];
+    }
+  }
+  return F;
+}
+
+// Corner forces ⁰V (P̄_iso + p̄ cof F) ∇N_a of the smoothed slots [begin, end): P̄_iso the mean
+// of the element's six edge stresses, p̄ the mean of its corners' nodal pressures.
+void ElementSet::compute_smoothed(const double* u, int begin, int end) {
+  (void)u;  // F was stored by the pre-pass
+  double* __restrict buffer = buffer_.data();
+  for (int i = begin; i < end; ++i) {
+    const int e = original_[i];
+    Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+    if (e >= 0 && !removed_[e]) {
+      double pbar = 0;
+      for (int a = 0; a < 4; ++a) pbar += 0.25 * nodal_pressure_[node_offset_[a][i]];
+      P = volume_[i] * (smoothing_->element_stress(e, edge_stress_.data()) + pbar * cofactor(smoothed_gradient_[e]));
+    }
+    double f0[3] = {0, 0, 0};
+    for (int a = 1; a < 4; ++a)
+      for (int r = 0; r < 3; ++r) {
+        const double f = P(r, 0) * grad_[3 * (a - 1)][i] + P(r, 1) * grad_[3 * (a - 1) + 1][i] +
+                         P(r, 2) * grad_[3 * (a - 1) + 2][i];
+        buffer[static_cast<std::size_t>(3 * a + r) * stride_ + i] = f;
+        f0[r] -= f;
+      }
+    for (int r = 0; r < 3; ++r) buffer[static_cast<std::size_t>(r) * stride_ + i] = f0[r];
+  }
 }
 
 void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& stats) {
@@ -246,6 +312,17 @@ void ElementSet::compute_volume_ratios(const double* u, int tile, KernelStats& s
     double& min_j = inversion_allowed(ElementKind::anp) ? unchecked : stats.min_j;
     if (b < e) kernels::volume_ratio_kernel(view(), u, b, e, volume_ratio_.data(), min_j);
   }
+  for (int gi = 0; gi < G; ++gi) {
+    if (groups_[gi].kind != ElementKind::smoothed) continue;
+    const auto [b, e] = tile_blocks_[static_cast<std::size_t>(tile) * G + gi];
+    for (int i = b; i < e; ++i) {
+      if (original_[i] < 0) continue;
+      const Eigen::Matrix3d F = slot_gradient(i, u);
+      smoothed_gradient_[original_[i]] = F;
+      volume_ratio_[i] = F.determinant();
+      stats.min_j = std::min(stats.min_j, volume_ratio_[i]);
+    }
+  }
 }
 
 void ElementSet::update_nodal_pressures(int begin, int end) {
@@ -253,6 +330,9 @@ void ElementSet::update_nodal_pressures(int begin, int end) {
   for (int a = begin; a < end; ++a)
     if (anp_.has_elements(a))
       nodal_pressure_[3 * static_cast<std::size_t>(a)] = kappa * (nodal_volume_ratio(anp_, a, volume_ratio_.data()) - 1.0);
+  if (smoothing_)
+    smoothing_->edge_stresses(material_, smoothed_gradient_.data(), smoothing_->node_edge_begin(begin),
+                              smoothing_->node_edge_begin(end), edge_stress_.data());
 }
 
 double ElementSet::nodal_volumetric_energy(const double* volume_ratio) const {
@@ -397,6 +477,7 @@ void ElementSet::compute_group(const Group& g, const double* u, int begin, int e
       kernels::anp_forces(material_.isochoric, s, u, begin, end, nodal_pressure_.data(), scratch_.data(), stats.min_j,
                           law_data(clock));
       break;
+    case ElementKind::smoothed: compute_smoothed(u, begin, end); break;
   }
 }
 
@@ -468,6 +549,10 @@ void ElementSet::energies(const double* u, int begin, int end, double* energy, d
     if (J < min_j && !may_invert) {
       min_j = J;
       min_j_element = e;
+    }
+    if (kinds_[e] == ElementKind::smoothed) {  // its share of its edges' isochoric energy
+      energy[i] = removed_[e] ? 0.0 : smoothing_->element_energy(material_, e, u);
+      continue;
     }
     energy[i] = J > 0 || may_invert || kinds_[e] == ElementKind::linear
                     ? with_element_material(material_, e, [&](const Material& m) { return element_energy(m, kinds_[e], sh, c); })

@@ -15,16 +15,20 @@
 // comparison, and as the route a changing topology would need).
 // ANP elements (nodal_pressure.hpp) need their corners' nodal pressures, which depend on the
 // neighbouring elements: a pre-pass computes det F of the ANP elements (compute_volume_ratios)
-// and then the nodal pressures (update_nodal_pressures) before the element phase.
+// and then the nodal pressures (update_nodal_pressures) before the element phase. Smoothed
+// elements (edge_smoothing.hpp) share that pre-pass: the first pass also stores their F, the
+// second also evaluates the edge stresses of the edges its nodes own.
 // Every element and every node is computed the same way whatever the split into ranges, so
 // results are bit-identical for any thread count: no atomics, no racy scatter, and range
 // boundaries fall on block boundaries so no element ever goes through a loop remainder.
 #include <array>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "softsim/fem/aligned.hpp"
 #include "softsim/fem/constitutive.hpp"
+#include "softsim/fem/edge_smoothing.hpp"
 #include "softsim/fem/element_kernels.hpp"
 #include "softsim/fem/element_kind.hpp"
 #include "softsim/fem/law_data.hpp"
@@ -89,10 +93,11 @@ class ElementSet {
   int slot_of(int element) const { return slot_of_[element]; }
 
   // ---- the ANP pre-pass (nothing to do without ANP elements) ----
-  bool has_nodal_pressure() const { return count(ElementKind::anp) > 0; }
+  bool has_nodal_pressure() const { return count(ElementKind::anp) > 0 || count(ElementKind::smoothed) > 0; }
   // det F of the ANP elements of a tile.
   void compute_volume_ratios(const double* u, int tile, KernelStats& stats);
-  // p_a = κ (J_a − 1) for the nodes [begin, end), from the tiles' volume ratios.
+  // p_a = κ (J_a − 1) for the nodes [begin, end), from the tiles' volume ratios, and the
+  // stresses of the smoothing edges these nodes own.
   void update_nodal_pressures(int begin, int end);
   // Σ_a V_a U(J_a): the ANP elements' volumetric energy (energies() holds their isochoric part),
   // from the volume ratio of every slot as energies() writes it.
@@ -205,6 +210,9 @@ class ElementSet {
   void compute_linear_rows(const double* u, const int* node_begin, const int* node_end);
   void build_tiles(const std::vector<int>& key, int tile_nodes);
   void build_nodal_pressure(const mesh::TetMesh& mesh);
+  void compute_smoothed(const double* u, int begin, int end);
+  void rebuild_smoothing(const mesh::TetMesh& mesh);
+  Eigen::Matrix3d slot_gradient(int i, const double* u) const;
   void reweigh_nodal_volume(int node);
   kernels::SoaView view();
 
@@ -233,6 +241,10 @@ class ElementSet {
   AlignedVector<double> volume_ratio_;
   NodalVolumes anp_;
   AlignedVector<double> nodal_pressure_;
+  // Smoothed elements: their edges, F per original element and P_iso per edge of the step.
+  std::optional<EdgeSmoothing> smoothing_;
+  std::vector<Eigen::Matrix3d> smoothed_gradient_;
+  std::vector<Eigen::Matrix3d> edge_stress_;
   // Assembled linear rows and, per node, the row force of the current element phase.
   LinearStiffnessRows linear_rows_;
   AlignedVector<double> linear_force_;

@@ -28,7 +28,7 @@ Eigen::Matrix3d cauchy_stress(const Material& m, ElementKind kind, const Eigen::
   const Eigen::Matrix3d P = first_piola(m, kind, F);
   if (kind == ElementKind::linear) return P;
   Eigen::Matrix3d sigma = P * F.transpose() / F.determinant();
-  if (kind == ElementKind::anp) sigma.diagonal().array() += anp_pressure;
+  if (volumetric_at_nodes(kind)) sigma.diagonal().array() += anp_pressure;
   return 0.5 * (sigma + sigma.transpose());
 }
 

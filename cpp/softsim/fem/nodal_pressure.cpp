@@ -32,7 +32,7 @@ NodalPressure::NodalPressure(const mesh::TetMesh& mesh, const std::vector<Elemen
 std::vector<Eigen::Matrix3d> NodalPressure::anp_gradients(const double* u) const {
   std::vector<Eigen::Matrix3d> F(tets_.size());
   for (std::size_t e = 0; e < tets_.size(); ++e)
-    if (kinds_[e] == ElementKind::anp) F[e] = deformation_gradient(shapes_[e], corner_displacements(tets_[e], u));
+    if (volumetric_at_nodes(kinds_[e])) F[e] = deformation_gradient(shapes_[e], corner_displacements(tets_[e], u));
   return F;
 }
 
@@ -43,7 +43,7 @@ void NodalPressure::nodal_volume_ratios(const double* u, std::vector<double>& J)
 void NodalPressure::nodal_volume_ratios(const std::vector<Eigen::Matrix3d>& F, std::vector<double>& J) const {
   std::vector<double> je(tets_.size(), 1.0);
   for (std::size_t e = 0; e < tets_.size(); ++e)
-    if (kinds_[e] == ElementKind::anp) je[e] = F[e].determinant();
+    if (volumetric_at_nodes(kinds_[e])) je[e] = F[e].determinant();
   const int n = static_cast<int>(nodal_.volume.size());
   J.assign(n, 1.0);
   for (int a = 0; a < n; ++a)
@@ -59,7 +59,7 @@ void NodalPressure::element_pressures(const double* u, std::vector<double>& pbar
 void NodalPressure::element_pressures(const std::vector<double>& J, std::vector<double>& pbar) const {
   pbar.assign(tets_.size(), 0.0);
   for (std::size_t e = 0; e < tets_.size(); ++e)
-    if (kinds_[e] == ElementKind::anp) {
+    if (volumetric_at_nodes(kinds_[e])) {
       double s = 0;
       for (int a : tets_[e]) s += kappa_ * (J[a] - 1.0);  // p_a = U'(J_a)
       pbar[e] = 0.25 * s;
@@ -73,7 +73,7 @@ void NodalPressure::add_forces(const double* u, Eigen::VectorXd& f) const {
   nodal_volume_ratios(F, J);
   element_pressures(J, pbar);
   for (std::size_t e = 0; e < tets_.size(); ++e) {
-    if (kinds_[e] != ElementKind::anp) continue;
+    if (!volumetric_at_nodes(kinds_[e])) continue;
     const Eigen::Matrix3d P = shapes_[e].volume * pbar[e] * cofactor(F[e]);
     for (int a = 0; a < 4; ++a) f.segment<3>(3 * tets_[e][a]) += P * shapes_[e].grad[a];
   }
@@ -128,13 +128,13 @@ void NodalPressure::add_tangent(const double* u, Eigen::SparseMatrix<double>& K)
   const std::vector<Eigen::Matrix3d> F = anp_gradients(u);
   std::vector<Eigen::Matrix3d> cof(m);
   for (int e = 0; e < m; ++e)
-    if (kinds_[e] == ElementKind::anp) cof[e] = cofactor(F[e]);
+    if (volumetric_at_nodes(kinds_[e])) cof[e] = cofactor(F[e]);
   std::vector<double> J;
   nodal_volume_ratios(F, J);
   const int n = static_cast<int>(J.size());
   // Element term: ⁰V_e p̄_e d(cof F_e)[e_k ⊗ ∇N_b] ∇N_a.
   for (int e = 0; e < m; ++e) {
-    if (kinds_[e] != ElementKind::anp) continue;
+    if (!volumetric_at_nodes(kinds_[e])) continue;
     const TetShape& sh = shapes_[e];
     double pbar = 0;
     for (int a : tets_[e]) pbar += 0.25 * kappa_ * (J[a] - 1.0);

@@ -7,9 +7,12 @@
 // neo-Hookean energy per element and evaluates the volumetric part U(J) = κ/2 (J − 1)² at the
 // nodes, with the nodal volume ratio
 //     J_a = v_a / V_a,   V_a = Σ_{e∋a} ⁰V_e / 4,   v_a = Σ_{e∋a} ⁰V_e J_e / 4
-// (only ANP elements count). The energy Σ_e ⁰V_e W_iso(F_e) + Σ_a V_a U(J_a) gives the element
+// (only ANP and smoothed elements count). The energy Σ_e ⁰V_e W_iso(F_e) + Σ_a V_a U(J_a) gives the element
 // forces ⁰V_e (P_iso(F_e) + p̄_e cof F_e) ∇N_a, where p̄_e is the mean of the nodal pressures
-// p_a = U'(J_a) = κ (J_a − 1) of its corners: one volumetric constraint per node, no locking.
+// p_a = U'(J_a) = κ (J_a − 1) of its corners: one volumetric constraint per node instead of one
+// per element, which removes most of the volumetric locking but not the constant-strain element's
+// own stiffness (results/validation/incompressible_summary.md; the smoothed kind, edge_smoothing.hpp,
+// also smooths the isochoric part).
 // Under a homogeneous deformation every J_a equals J_e and the element is plain TLED.
 //
 // This file holds a clear (serial) evaluation used by the static solver's assembly and by the

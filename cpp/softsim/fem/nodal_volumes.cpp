@@ -9,7 +9,7 @@ NodalVolumes nodal_volumes(const mesh::TetMesh& mesh, const std::vector<ElementK
   nv.begin.assign(n + 1, 0);
   nv.volume.assign(n, 0.0);
   for (int e = 0; e < mesh.num_tets(); ++e)
-    if (kinds[e] == ElementKind::anp)
+    if (volumetric_at_nodes(kinds[e]))
       for (int a : mesh.tets[e]) {
         ++nv.begin[a + 1];
         nv.volume[a] += 0.25 * element_volume[e];
@@ -19,7 +19,7 @@ NodalVolumes nodal_volumes(const mesh::TetMesh& mesh, const std::vector<ElementK
   nv.weight.resize(nv.begin[n]);
   std::vector<int> fill(nv.begin.begin(), nv.begin.end() - 1);
   for (int e = 0; e < mesh.num_tets(); ++e)
-    if (kinds[e] == ElementKind::anp)
+    if (volumetric_at_nodes(kinds[e]))
       for (int a : mesh.tets[e]) {
         nv.element[fill[a]] = e;
         nv.weight[fill[a]++] = 0.25 * element_volume[e] / nv.volume[a];

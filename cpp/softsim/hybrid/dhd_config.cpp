@@ -261,7 +261,7 @@ void read_partition(const io::JsonReader& cfg, const mesh::TetMesh& mesh, DhdCon
   }
   p->reject_unknown();
   const bool wants_tled = s.kind != PartitionKind::uniform || s.uniform_element == fem::ElementKind::tled ||
-                          s.uniform_element == fem::ElementKind::anp;
+                          fem::volumetric_at_nodes(s.uniform_element);
   if (c.linear_material && wants_tled)
     p->fail("a partition without TLED or ANP elements (material.model is \"linear\"): use {\"kind\": \"uniform\", "
             "\"element\": \"linear\" or \"corotational\"}");

@@ -61,7 +61,7 @@ DhdScene::DhdScene(std::shared_ptr<const mesh::TetMesh> mesh, DhdConfig config, 
     // flattens (no 1/J), while the deformed altitude goes to zero and would stop the run there.
     std::vector<char> follows(kinds_.size());
     for (std::size_t e = 0; e < kinds_.size(); ++e)
-      follows[e] = (kinds_[e] == fem::ElementKind::tled || kinds_[e] == fem::ElementKind::anp) &&
+      follows[e] = (kinds_[e] == fem::ElementKind::tled || fem::volumetric_at_nodes(kinds_[e])) &&
                    !elements_->inversion_allowed(kinds_[e]);
     deformed_step_ =
         std::make_unique<dynamics::DeformedCriticalStep>(*mesh_, std::move(follows), config_.material.elastic);
