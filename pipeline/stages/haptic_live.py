@@ -162,5 +162,6 @@ def run(ctx):
         whole_run = {"force": w["force"], "events": w["events"], "cuts": w["cuts"], "timing": w["timing"],
                      "seconds": time.perf_counter() - t0}
     payload = {"frames": frames, "rate": rate, "seconds": seconds, "positions": positions.tolist(), "cuts": cuts,
-               "served": runs, "whole": whole_run, "cpu": cpu_description(), "tools": tool_hashes(TOOLS)}
+               "served": runs, "whole": whole_run, "cpu": cpu_description(), "cores": os.cpu_count(),
+               "tools": tool_hashes(TOOLS)}
     write_artifact(ctx.out_path, SCHEMA, 1, TOOL, cfg, payload, inputs=[cfg["scene"]["model"]["mesh"]])

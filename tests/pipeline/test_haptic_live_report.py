@@ -28,7 +28,7 @@ def test_latency_and_error_follow_the_session(tmp_path):
     rt[30] = 3e-3          # one later than 2 ms
     at = t + rt
     at[700:] += 0.2        # a 200 ms stall before frame 700
-    payload = {"frames": frames, "rate": rate, "seconds": 1.0, "cpu": "test cpu", "cuts": [{"time": 0.5}],
+    payload = {"frames": frames, "rate": rate, "seconds": 1.0, "cpu": "test cpu", "cores": 2, "cuts": [{"time": 0.5}],
                "served": {"background": served(off, rt, at, held=50), "inline": served(exact, rt, t + rt)},
                "whole": {"force": whole.tolist()}}
     ctx = FakeContext(tmp_path, runs={"session": [run(payload)]})
@@ -47,4 +47,13 @@ def test_latency_and_error_follow_the_session(tmp_path):
     assert bg["error, 100 ms around each cut"] == "7.1 %"
     assert inl["RMS force error"] == "0.00 %"
     summary = (tmp_path / "live_summary.md").read_text()
-    assert "not the idle targets" in summary and "load 3.0 before" in summary
+    assert "these are not idle figures" in summary and "load 3.0 before" in summary
+    assert "not a verdict on the idle targets" in summary
+    assert "0.30 % of the answers later than 1 ms" in summary and "1 later than 2 ms" in summary
+    # The same loads on 8 cores are a quiet machine: the verdict stands without the busy caveat.
+    payload["cores"] = 8
+    quiet = FakeContext(tmp_path / "quiet", runs={"session": [run(payload)]})
+    report_mod.report(quiet)
+    summary = (tmp_path / "quiet" / "live_summary.md").read_text()
+    assert "quiet (load at most 7 on 8 cores" in summary and "not a verdict" not in summary
+    assert "latency targets are not met" in summary
