@@ -2,7 +2,8 @@
 
 Meshes the liver as the haptic experiments do (experiments/haptic_whole.json: SOFA's liver2
 surface through Gmsh, 8 cm target edge at the file's decimetre scale), fixes its far side (the
-same half-space node set), writes the scene config and starts `haptic_sim view` on it:
+same half-space node set), writes the scene config (the experiment's liver scene, with a probe
+that pushes) and starts `haptic_sim view` on it:
     /usr/bin/python3 -m pipeline.view_scene [--port 8080] [--host 127.0.0.1]
 The mesh and the config are kept under build/view/ (the mesh is made once); the config is the one
 `haptic_sim run` and `serve` read too (cpp/apps/haptic_sim.md)."""
@@ -37,7 +38,10 @@ def make_scene(folder):
                        cwd=ROOT, check=True)
         payload, _ = add_node_sets(read_artifact(raw, MESH_SCHEMA)["payload"], sets)
         write_artifact(mesh, MESH_SCHEMA, 1, NODE_SETS_TOOL, {"mesh": rel(raw), "sets": sets}, payload, inputs=[raw])
-    scene = dict(scene, model=dict(scene["model"], mesh=rel(mesh)), input=press)
+    # The pointer pushes (a tip off the surface touches nothing), so a hovering pointer costs the
+    # frame nothing; the experiment's grasp holds the surface point it first touched.
+    scene = dict(scene, model=dict(scene["model"], mesh=rel(mesh)), input=press,
+                 probe=dict(scene["probe"], contact="push"))
     config = folder / "liver_scene.json"
     config.write_text(json.dumps(scene, indent=1))
     return config

@@ -58,6 +58,37 @@ def run(config, frames, page, work):
             "frames": p["frames"], "states": states}
 
 
+def scene_words(config, frames):
+    """The scene in words, read from the config the runs used."""
+    c = json.loads(Path(config).read_text())
+    m, probe = c["model"], c.get("probe", {})
+    mat = m.get("material", {})
+    regions = "linked regions" if "regions" in c else "the whole model"
+    return (f"Scene `{config}`: mesh `{m['mesh']}`, material {mat.get('model', 'neo_hookean_paper')} "
+            f"E = {mat.get('E')} Pa, ν = {mat.get('nu')}, {regions}, probe spring {probe.get('stiffness')} N/m "
+            f"({probe.get('contact', 'grasp')}); {frames} frames at 1 kHz per run, the tip held 5 mm off the "
+            "surface (the same work every frame); clients in turn: none, the C++ device bridge (`view_bridge`: "
+            "samples at 60 Hz, states at up to 60 Hz, nothing drawn) and the page in headless Chromium "
+            "(software rendering). Frame compute time: the wall time of `HapticScene::frame` alone.")
+
+
+def reading(rows, name):
+    """What the table says: each client's median p50 and p99 against no client's."""
+    base = [r for r in rows if r["page"] is False]
+    p50 = statistics.median(r["p50"] for r in base)
+    p99 = statistics.median(r["p99"] for r in base)
+    out = ["**Reading.** Against no client:"]
+    for page in ("bridge", True):
+        sel = [r for r in rows if r["page"] == page]
+        q50 = statistics.median(r["p50"] for r in sel)
+        q99 = statistics.median(r["p99"] for r in sel)
+        out.append(f"with the {name[page]} the median frame is {q50 / p50:.2f}× and the 99th percentile "
+                   f"{q99 / p99:.2f}×;")
+    out.append("the loop never waits for a client (nothing in the frame touches the socket or the page), so a "
+               "difference is the client's processes competing for the cores.")
+    return " ".join(out)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--config", required=True)
@@ -72,7 +103,11 @@ def main():
                 rows.append(run(a.config, a.frames, page, Path(tmp)))
     cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), platform.machine())
     load = open("/proc/loadavg").read().split()[:3]
-    lines = [f"CPU: {cpu}, {os.cpu_count()} cores; load average after the runs {' '.join(load)} (a shared, busy machine).",
+    cores = os.cpu_count() or 1
+    # The runs themselves keep up to about one core busy (the scene, and the client's process).
+    state = "a busy machine" if float(load[0]) > cores else "a quiet machine"
+    lines = ["# What a page costs the haptic loop (haptic_sim view)", "", scene_words(a.config, a.frames), "",
+             f"CPU: {cpu}, {cores} cores; load average after the runs {' '.join(load)} ({state}).",
              "", "| run | client | frames | compute mean (ms) | p50 (ms) | p99 (ms) | max (ms) | deadline misses | states received |",
              "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     name = {False: "none", "bridge": "bridge (C++)", True: "page (Chromium)"}
@@ -83,6 +118,7 @@ def main():
         sel = [r for r in rows if r["page"] == page]
         lines.append(f"\nClient {name[page]}: median of the runs' p50 "
                      f"{1e3 * statistics.median(r['p50'] for r in sel):.3f} ms, p99 {1e3 * statistics.median(r['p99'] for r in sel):.3f} ms.")
+    lines.append("\n" + reading(rows, name))
     text = "\n".join(lines) + "\n"
     if a.out:
         Path(a.out).write_text(text)
