@@ -21,6 +21,7 @@
 #include "softsim/fem/element_set.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/assembly_checks.hpp"
 #include "support/fields.hpp"
 #include "support/scenes.hpp"
 
@@ -31,24 +32,15 @@ using material::NeoHookeanForm;
 namespace {
 
 using test_scenes::affine_field;
+using test_scenes::expect_forces_are_the_energy_gradient_and_the_tangent_their_derivative;
 using test_scenes::constraint;
 using test_scenes::cuboid;
 using test_scenes::gathered_forces;
 using test_scenes::kPaper;
 using test_scenes::max_abs;
 using test_scenes::max_abs_diff;
+using test_scenes::rough_field;
 using test_scenes::run_explicit;
-
-// A non-homogeneous state: stretch and shear plus random nodal noise (J from about 0.8 to 1.2).
-std::vector<double> rough_field(const mesh::TetMesh& m, unsigned seed, double noise) {
-  Eigen::Matrix3d F;
-  F << 1.08, 0.06, -0.05, 0.03, 0.9, 0.04, -0.07, 0.02, 0.95;
-  std::vector<double> u = affine_field(m, F);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-noise, noise);
-  for (double& x : u) x += d(rng);
-  return u;
-}
 
 // ANP in the middle layers, the other kinds around it: interfaces of every pair.
 std::vector<ElementKind> mixed_kinds(const mesh::TetMesh& m) {
@@ -89,27 +81,7 @@ TEST_P(Forms, ForcesAreTheGradientOfTheEnergyAndTheTangentTheirDerivative) {
   const fem::Material mat = fem::Material::make(kPaper, GetParam());
   const fem::Assembler as(m, mixed_kinds(m), mat);
   const std::vector<double> u = rough_field(m, 7, 0.0008);
-  Eigen::VectorXd f;
-  as.internal_forces(u.data(), f);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> d(-1.0, 1.0);
-  Eigen::VectorXd v(u.size());
-  for (auto& x : v) x = d(rng);
-  const double h = 1e-7;
-  std::vector<double> up = u, um = u;
-  for (std::size_t q = 0; q < u.size(); ++q) up[q] += h * v[q], um[q] -= h * v[q];
-  const double dW = (as.strain_energy(up.data()) - as.strain_energy(um.data())) / (2 * h);
-  EXPECT_NEAR(dW, f.dot(v), 1e-6 * std::abs(f.dot(v)));
-
-  Eigen::SparseMatrix<double> K = as.pattern();
-  as.tangent(u.data(), K);
-  Eigen::VectorXd fp, fm;
-  const double g = 1e-6;
-  for (std::size_t q = 0; q < u.size(); ++q) up[q] = u[q] + g * v[q], um[q] = u[q] - g * v[q];
-  as.internal_forces(up.data(), fp);
-  as.internal_forces(um.data(), fm);
-  const Eigen::VectorXd fd = (fp - fm) / (2 * g);
-  EXPECT_LT((K * v - fd).norm(), 1e-6 * fd.norm());
+  expect_forces_are_the_energy_gradient_and_the_tangent_their_derivative(as, u);
 }
 
 TEST_P(Forms, ExplicitPathEqualsTheReferenceAssemblyInAMixedMesh) {

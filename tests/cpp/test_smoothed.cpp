@@ -21,6 +21,7 @@
 #include "softsim/fem/element_set.hpp"
 #include "softsim/mesh/cuboid.hpp"
 
+#include "support/assembly_checks.hpp"
 #include "support/fields.hpp"
 #include "support/scenes.hpp"
 
@@ -31,12 +32,14 @@ using material::NeoHookeanForm;
 namespace {
 
 using test_scenes::affine_field;
+using test_scenes::expect_forces_are_the_energy_gradient_and_the_tangent_their_derivative;
 using test_scenes::constraint;
 using test_scenes::cuboid;
 using test_scenes::gathered_forces;
 using test_scenes::kPaper;
 using test_scenes::max_abs;
 using test_scenes::max_abs_diff;
+using test_scenes::rough_field;
 using test_scenes::run_explicit;
 
 std::vector<ElementKind> all(const mesh::TetMesh& m, ElementKind kind) { return std::vector<ElementKind>(m.num_tets(), kind); }
@@ -50,17 +53,6 @@ std::vector<ElementKind> mixed_kinds(const mesh::TetMesh& m) {
                : e % 7 == 0  ? ElementKind::anp
                              : ElementKind::smoothed;
   return kinds;
-}
-
-// A non-homogeneous state: stretch and shear plus random nodal noise.
-std::vector<double> rough_field(const mesh::TetMesh& m, unsigned seed, double noise) {
-  Eigen::Matrix3d F;
-  F << 1.08, 0.06, -0.05, 0.03, 0.9, 0.04, -0.07, 0.02, 0.95;
-  std::vector<double> u = affine_field(m, F);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-noise, noise);
-  for (double& x : u) x += d(rng);
-  return u;
 }
 
 const material::ElasticParameters kSoft{5000.0, 0.49, 1000.0};
@@ -109,27 +101,7 @@ TEST(Smoothed, ForcesAreTheGradientOfTheEnergyAndTheTangentTheirDerivative) {
   const fem::Material mat = fem::Material::make(kSoft, NeoHookeanForm::decoupled);
   const fem::Assembler as(m, mixed_kinds(m), mat);
   const std::vector<double> u = rough_field(m, 7, 0.0008);
-  Eigen::VectorXd f;
-  as.internal_forces(u.data(), f);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> d(-1.0, 1.0);
-  Eigen::VectorXd v(u.size());
-  for (auto& x : v) x = d(rng);
-  const double h = 1e-7;
-  std::vector<double> up = u, um = u;
-  for (std::size_t q = 0; q < u.size(); ++q) up[q] += h * v[q], um[q] -= h * v[q];
-  const double dW = (as.strain_energy(up.data()) - as.strain_energy(um.data())) / (2 * h);
-  EXPECT_NEAR(dW, f.dot(v), 1e-6 * std::abs(f.dot(v)));
-
-  Eigen::SparseMatrix<double> K = as.pattern();
-  as.tangent(u.data(), K);
-  Eigen::VectorXd fp, fm;
-  const double g = 1e-6;
-  for (std::size_t q = 0; q < u.size(); ++q) up[q] = u[q] + g * v[q], um[q] = u[q] - g * v[q];
-  as.internal_forces(up.data(), fp);
-  as.internal_forces(um.data(), fm);
-  const Eigen::VectorXd fd = (fp - fm) / (2 * g);
-  EXPECT_LT((K * v - fd).norm(), 1e-6 * fd.norm());
+  expect_forces_are_the_energy_gradient_and_the_tangent_their_derivative(as, u);
 }
 
 TEST(Smoothed, ExplicitPathEqualsTheReferenceAssemblyInAMixedMesh) {
