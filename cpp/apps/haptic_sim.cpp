@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     haptic::HapticRecord record;
     if (ctx.mode == "view") {
 #ifdef SOFTSIM_HAVE_VIEW
-      record = view::run_view(ctx, view_args, config, scene);
+      record = view::run_view(ctx, view_args, config, scene, limiter);
 #else
       throw InputError("view: this haptic_sim was built without the viewer (Boost.Beast was not found at configure time)");
 #endif

@@ -70,3 +70,35 @@ TEST(ViewLoop, APointersBladeCutsExactlyAsABladeOnTheToolAlongTheSameTips) {
   for (const auto& f : r.force) pressed = std::max(pressed, f.norm());
   EXPECT_GT(pressed, 0.01);
 }
+
+// The page's pointer drives the scene as a device does, so its forces go through the same
+// device limits as run and serve: a press that asks more than max_force is sent max_force at
+// most, and the limiter records the clamps.
+TEST(ViewLoop, ThePointersForcesGoThroughTheDevicesForceLimit) {
+  const HapticBlock block;
+  haptic::HapticOptions probe = test_scenes::spring_probe(100);
+  probe.contact = haptic::ContactMode::push;
+  std::vector<haptic::PointerSample> samples;  // the tip pressed 1 cm into the top over 0.2 s
+  for (int k = 0; k <= 20; ++k) {
+    haptic::PointerSample s;
+    s.t = 50 + 0.01 * k;
+    s.position = Eigen::Vector3d(0.03, 0.03, 0.03 - 0.0005 * k);
+    samples.push_back(s);
+  }
+  haptic::DeviceSafetyConfig safety;
+  safety.max_force = 0.05;  // N: below what the press asks
+  haptic::ForceLimiter limiter(safety);
+  haptic::HapticScene live(block.mesh, block.config(20), probe);
+  haptic::ViewLoopOptions options;
+  options.paced = false;
+  options.max_frames = 300;
+  options.limiter = &limiter;
+  haptic::ViewLoop loop(live, samples.front().position, options);
+  run_loop(loop, samples);
+  const haptic::HapticRecord& r = loop.record();
+  double largest = 0;
+  for (const auto& f : r.force) largest = std::max(largest, f.norm());
+  EXPECT_LE(largest, safety.max_force * (1 + 1e-12));
+  EXPECT_GT(largest, 0.5 * safety.max_force);
+  EXPECT_GT(limiter.payload()["max_force_frames"].get<long>(), 0);
+}

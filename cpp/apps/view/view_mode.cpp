@@ -28,7 +28,7 @@ const char* contact_name(haptic::ContactMode m) {
 }  // namespace
 
 haptic::HapticRecord run_view(app::AppContext& ctx, const ViewArgs& args, const haptic::HapticConfig& config,
-                              haptic::HapticScene& scene) {
+                              haptic::HapticScene& scene, haptic::ForceLimiter& limiter) {
   namespace fs = std::filesystem;
   const std::string web = args.web_root.empty() ? std::string(SOFTSIM_VIEW_WEB_DIR) : args.web_root;
   if (!fs::exists(fs::path(web) / "index.html"))
@@ -44,6 +44,7 @@ haptic::HapticRecord run_view(app::AppContext& ctx, const ViewArgs& args, const 
   haptic::ViewLoopOptions loop_options;
   loop_options.latency = args.latency;
   loop_options.max_frames = args.frames;
+  loop_options.limiter = &limiter;
   loop_options.state_every = std::max(1, static_cast<int>(std::lround(1.0 / (60 * config.options.frame_step))));
   haptic::ViewLoop loop(scene, start, loop_options);
 
@@ -66,7 +67,9 @@ haptic::HapticRecord run_view(app::AppContext& ctx, const ViewArgs& args, const 
   });
   loop.rethrow();
   if (!args.record.empty()) loop.write_trajectory(args.record);
-  return loop.record();
+  haptic::HapticRecord record = loop.record();
+  record.reports["device_safety"] = limiter.payload();
+  return record;
 }
 
 }  // namespace softsim::view

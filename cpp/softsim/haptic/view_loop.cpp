@@ -93,7 +93,8 @@ void ViewLoop::frame(long k) {
   if (tip.blade) blade_cut(tip);
   blade_ = tip.blade;
   previous_tip_ = p;
-  const Eigen::Vector3d f = scene_.frame(p);
+  Eigen::Vector3d f = scene_.frame(p);
+  if (options_.limiter) f = options_.limiter->limit(k + 1, f);
   const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   record_.push((k + 1) * h, p, f, scene_.in_contact(), seconds);
   window_sum_ += seconds;

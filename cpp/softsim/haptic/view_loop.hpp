@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "softsim/haptic/device_safety.hpp"
 #include "softsim/haptic/haptic_run.hpp"
 #include "softsim/haptic/haptic_scene.hpp"
 #include "softsim/haptic/view_pointer.hpp"
@@ -23,6 +24,7 @@ struct ViewLoopOptions {
   int state_every = 16;    // frames per published state (16: about 60 Hz at 1 kHz)
   long max_frames = 0;     // stop after this many frames (0: until stopped)
   bool paced = true;       // false: frames back to back, not at the wall clock (tests)
+  ForceLimiter* limiter = nullptr;  // what a device may be sent, as in run and serve (device_safety.hpp)
 };
 
 class ViewLoop {
